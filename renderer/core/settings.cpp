@@ -1,0 +1,178 @@
+#include "renderer/core/settings.h"
+
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+
+namespace deepgi {
+
+bool Settings::operator==(const Settings& o) const {
+#define DEEPGI_SETTING(member, ...) if (member != o.member) return false;
+#define DEEPGI_ENUM(member, ...) if (member != o.member) return false;
+#include "renderer/core/settings.def"
+#undef DEEPGI_SETTING
+#undef DEEPGI_ENUM
+    return true;
+}
+
+namespace {
+std::vector<std::string> splitChoices(const char* s) {
+    std::vector<std::string> out;
+    std::stringstream ss(s);
+    std::string item;
+    while (std::getline(ss, item, '|')) out.push_back(item);
+    return out;
+}
+template <class T> SettingType typeOf();
+template <> SettingType typeOf<float>() { return SettingType::Float; }
+template <> SettingType typeOf<int>() { return SettingType::Int; }
+template <> SettingType typeOf<bool>() { return SettingType::Bool; }
+
+double clampTo(const SettingInfo& info, double v) {
+    if (!std::isfinite(v)) throw std::runtime_error(std::string("setting '") + info.key + "': value is not finite");
+    return std::min(std::max(v, info.min), info.max);
+}
+}  // namespace
+
+const std::vector<SettingInfo>& settingTable() {
+    static const std::vector<SettingInfo> table = {
+#define DEEPGI_SETTING(member, key, type, def, lo, hi, unit, group, effect)                                    \
+    SettingInfo{key, typeOf<type>(), double(def), double(lo), double(hi), unit, group, effect, {},             \
+                [](const Settings& s) { return double(s.member); },                                            \
+                [](Settings& s, double v) { s.member = std::is_same<type, bool>::value ? type(v != 0.0)        \
+                                                     : std::is_same<type, int>::value ? type(std::lround(v)) : type(v); }},
+#define DEEPGI_ENUM(member, key, def, choices, group, effect)                                                  \
+    SettingInfo{key, SettingType::Enum, double(def), 0.0, double(splitChoices(choices).size() - 1), "", group, \
+                effect, splitChoices(choices), [](const Settings& s) { return double(s.member); },             \
+                [](Settings& s, double v) { s.member = int(std::lround(v)); }},
+#include "renderer/core/settings.def"
+#undef DEEPGI_SETTING
+#undef DEEPGI_ENUM
+    };
+    return table;
+}
+
+const SettingInfo* findSetting(const std::string& key) {
+    for (const auto& s : settingTable()) if (key == s.key) return &s;
+    return nullptr;
+}
+
+std::vector<std::string> settingGroups() {
+    std::vector<std::string> groups;
+    for (const auto& s : settingTable())
+        if (std::find(groups.begin(), groups.end(), s.group) == groups.end()) groups.push_back(s.group);
+    return groups;
+}
+
+std::string formatSettingValue(const SettingInfo& info, double v) {
+    switch (info.type) {
+    case SettingType::Bool: return v != 0.0 ? "true" : "false";
+    case SettingType::Int: return std::to_string(std::lround(v));
+    case SettingType::Enum: {
+        long i = std::lround(v);
+        return (i >= 0 && i < (long)info.choices.size()) ? info.choices[i] : std::to_string(i);
+    }
+    case SettingType::Float: {
+        std::ostringstream os;
+        os << v;
+        return os.str();
+    }
+    }
+    return "";
+}
+
+void applySetting(Settings& s, const std::string& key, const std::string& value) {
+    const SettingInfo* info = findSetting(key);
+    if (!info) throw std::runtime_error("unknown setting '" + key + "' (see `deepgi settings`)");
+    double v = 0.0;
+    if (info->type == SettingType::Bool) {
+        if (value == "true" || value == "on" || value == "1") v = 1.0;
+        else if (value == "false" || value == "off" || value == "0") v = 0.0;
+        else throw std::runtime_error("setting '" + key + "' expects true/false, got '" + value + "'");
+    } else if (info->type == SettingType::Enum) {
+        auto it = std::find(info->choices.begin(), info->choices.end(), value);
+        if (it == info->choices.end()) {
+            std::string all;
+            for (const auto& c : info->choices) all += (all.empty() ? "" : "|") + c;
+            throw std::runtime_error("setting '" + key + "' expects one of " + all + ", got '" + value + "'");
+        }
+        v = double(it - info->choices.begin());
+    } else {
+        size_t used = 0;
+        try { v = std::stod(value, &used); } catch (...) { used = 0; }
+        if (used == 0 || used != value.size())
+            throw std::runtime_error("setting '" + key + "' expects a number, got '" + value + "'");
+    }
+    info->set(s, clampTo(*info, v));
+}
+
+void applyAssignment(Settings& s, const std::string& kv) {
+    auto eq = kv.find('=');
+    if (eq == std::string::npos) throw std::runtime_error("--set expects key=value, got '" + kv + "'");
+    applySetting(s, kv.substr(0, eq), kv.substr(eq + 1));
+}
+
+nlohmann::json settingsToJson(const Settings& s) {
+    nlohmann::json j = nlohmann::json::object();
+    for (const auto& info : settingTable()) {
+        double v = info.get(s);
+        switch (info.type) {
+        case SettingType::Bool: j[info.key] = v != 0.0; break;
+        case SettingType::Int: j[info.key] = std::lround(v); break;
+        case SettingType::Enum: j[info.key] = formatSettingValue(info, v); break;
+        case SettingType::Float: j[info.key] = v; break;
+        }
+    }
+    return j;
+}
+
+void applySettingsJson(Settings& s, const nlohmann::json& j, const std::string& where) {
+    if (!j.is_object()) throw std::runtime_error(where + ": settings must be a JSON object of \"key\": value");
+    for (auto it = j.begin(); it != j.end(); ++it) {
+        const SettingInfo* info = findSetting(it.key());
+        if (!info) throw std::runtime_error(where + ": unknown setting '" + it.key() + "'");
+        const auto& v = it.value();
+        try {
+            if (v.is_boolean()) applySetting(s, it.key(), v.get<bool>() ? "true" : "false");
+            else if (v.is_number()) {
+                if (info->type == SettingType::Bool || info->type == SettingType::Enum)
+                    throw std::runtime_error("setting '" + it.key() + "' has the wrong type");
+                info->set(s, clampTo(*info, v.get<double>()));
+            } else if (v.is_string()) applySetting(s, it.key(), v.get<std::string>());
+            else throw std::runtime_error("setting '" + it.key() + "' has the wrong type");
+        } catch (const std::runtime_error& e) {
+            throw std::runtime_error(where + ": " + e.what());
+        }
+    }
+}
+
+void loadSettingsFile(Settings& s, const std::string& path) {
+    std::ifstream f(path);
+    if (!f) throw std::runtime_error(path + ": cannot open settings file");
+    nlohmann::json j;
+    try { j = nlohmann::json::parse(f); } catch (const std::exception& e) {
+        throw std::runtime_error(path + ": invalid JSON: " + e.what());
+    }
+    applySettingsJson(s, j, path);
+}
+
+void saveSettingsFile(const Settings& s, const std::string& path) {
+    std::ofstream f(path);
+    if (!f) throw std::runtime_error(path + ": cannot write settings file");
+    f << settingsToJson(s).dump(2) << "\n";
+}
+
+std::vector<std::string> presetNames() { return {"performance", "balanced", "quality"}; }
+
+void applyPreset(Settings& s, const std::string& name) {
+    auto names = presetNames();
+    if (std::find(names.begin(), names.end(), name) == names.end())
+        throw std::runtime_error("unknown preset '" + name + "' (performance, balanced, quality)");
+    loadSettingsFile(s, std::string(DEEPGI_ASSET_DIR) + "/presets/" + name + ".json");
+}
+
+}  // namespace deepgi

@@ -1,0 +1,54 @@
+#pragma once
+// Settings: the struct and its declaration table are both generated from settings.def (declare once).
+#include <nlohmann/json_fwd.hpp>
+#include <string>
+#include <vector>
+
+namespace deepgi {
+
+struct Settings {
+#define DEEPGI_SETTING(member, key, type, def, lo, hi, unit, group, effect) type member = def;
+#define DEEPGI_ENUM(member, key, def, choices, group, effect) int member = def;
+#include "renderer/core/settings.def"
+#undef DEEPGI_SETTING
+#undef DEEPGI_ENUM
+    bool operator==(const Settings& o) const;
+    bool operator!=(const Settings& o) const { return !(*this == o); }
+};
+
+enum class SettingType { Float, Int, Bool, Enum };
+
+struct SettingInfo {
+    const char* key;
+    SettingType type;
+    double def, min, max;
+    const char* unit;
+    const char* group;
+    const char* effect;
+    std::vector<std::string> choices;  // Enum only
+    // Access to the member, as a double (bool 0/1, enum index).
+    double (*get)(const Settings&);
+    void (*set)(Settings&, double);
+};
+
+const std::vector<SettingInfo>& settingTable();
+const SettingInfo* findSetting(const std::string& key);
+std::vector<std::string> settingGroups();  // in pipeline order
+
+// "key=value"; value is a number, true/false/on/off, or an enum choice name. Values are clamped to the range.
+// Throws std::runtime_error naming the key and the problem.
+void applySetting(Settings& s, const std::string& key, const std::string& value);
+void applyAssignment(Settings& s, const std::string& keyEqualsValue);
+
+nlohmann::json settingsToJson(const Settings& s);
+// Unknown keys and wrong types throw std::runtime_error naming the key; `where` names the file for messages.
+void applySettingsJson(Settings& s, const nlohmann::json& j, const std::string& where);
+void loadSettingsFile(Settings& s, const std::string& path);
+void saveSettingsFile(const Settings& s, const std::string& path);
+
+// Presets "performance", "balanced", "quality" live in assets/presets/<name>.json.
+std::vector<std::string> presetNames();
+void applyPreset(Settings& s, const std::string& name);
+std::string formatSettingValue(const SettingInfo& info, double v);
+
+}  // namespace deepgi

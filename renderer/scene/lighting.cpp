@@ -1,0 +1,64 @@
+#include "renderer/scene/lighting.h"
+
+#include <cmath>
+#include <limits>
+
+namespace deepgi {
+
+glm::vec3 defaultSunDirection(const Settings& s) {
+    const float az = glm::radians(s.sunAzimuth), el = glm::radians(s.sunElevation);
+    const glm::vec3 toSun(std::cos(el) * std::sin(az), std::sin(el), std::cos(el) * std::cos(az));
+    return -glm::normalize(toSun);
+}
+
+std::vector<Light> effectiveLights(const Scene& scene, const Settings& s) {
+    std::vector<Light> lights = scene.lights;
+    if (lights.empty()) {
+        Light sun;
+        sun.name = "default sun";
+        sun.type = LightType::Directional;
+        sun.intensity = s.sunIntensity;
+        sun.direction = defaultSunDirection(s);
+        lights.push_back(sun);
+    }
+    for (auto& l : lights) l.intensity *= s.lightScale;
+    return lights;
+}
+
+LightSample sampleLight(const Light& light, const glm::vec3& p) {
+    LightSample out;
+    const glm::vec3 radiance = light.color * light.intensity;
+    if (light.type == LightType::Directional) {
+        out.toLight = -light.direction;
+        out.distance = std::numeric_limits<float>::infinity();
+        out.irradiance = radiance;
+        return out;
+    }
+    glm::vec3 d = light.position - p;
+    float dist2 = glm::dot(d, d);
+    float dist = std::sqrt(dist2);
+    out.distance = dist;
+    out.toLight = dist > 0.0f ? d / dist : glm::vec3(0.0f, 1.0f, 0.0f);
+    float atten = 1.0f / std::max(dist2, 1e-4f);
+    if (light.range > 0.0f) {
+        float r = dist / light.range;
+        float w = std::min(std::max(1.0f - r * r * r * r, 0.0f), 1.0f);
+        atten *= w * w;
+    }
+    if (light.type == LightType::Spot) {
+        float cosOuter = std::cos(light.outerConeAngle), cosInner = std::cos(light.innerConeAngle);
+        float cd = glm::dot(light.direction, -out.toLight);
+        float t = (cd - cosOuter) / std::max(cosInner - cosOuter, 1e-4f);
+        t = std::min(std::max(t, 0.0f), 1.0f);
+        atten *= t * t;
+    }
+    out.irradiance = radiance * atten;
+    return out;
+}
+
+glm::vec3 lightIrradiance(const Light& light, const glm::vec3& p, const glm::vec3& n) {
+    LightSample s = sampleLight(light, p);
+    return s.irradiance * std::max(0.0f, glm::dot(n, s.toLight));
+}
+
+}  // namespace deepgi

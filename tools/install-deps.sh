@@ -1,0 +1,23 @@
+#!/usr/bin/env bash
+# Installs the Debian 12 packages deepgi needs; skips the ones already present (idempotent).
+set -euo pipefail
+PKGS=(build-essential cmake pkg-config
+  libglfw3-dev libglm-dev libimgui-dev libstb-dev libtinygltf-dev nlohmann-json3-dev libcli11-dev
+  libopenimageio-dev openimageio-tools libosmesa6-dev python3-glad libembree-dev libgtest-dev
+  glslang-tools xvfb xauth imagemagick)
+missing=()
+for p in "${PKGS[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if [ ${#missing[@]} -eq 0 ]; then
+  echo "deepgi: all ${#PKGS[@]} system packages present"
+  exit 0
+fi
+echo "deepgi: installing ${missing[*]}"
+SUDO=""
+if [ "$(id -u)" -ne 0 ]; then
+  command -v sudo >/dev/null || { echo "deepgi: need root or sudo to install: ${missing[*]}" >&2; exit 1; }
+  SUDO=sudo
+fi
+$SUDO apt-get update -qq
+DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}"
