@@ -1,0 +1,25 @@
+#pragma once
+// glTF 2.0 (.gltf and .glb) -> Scene, through tinygltf. Every error names the file and the problem.
+#include "renderer/scene/scene.h"
+
+#include <stdexcept>
+#include <string>
+
+namespace deepgi {
+
+struct SceneLoadError : std::runtime_error {
+    using std::runtime_error::runtime_error;
+};
+
+struct GltfLoadOptions {
+    // Images whose header claims more pixels than this are refused before any allocation.
+    uint64_t maxImagePixels = uint64_t(16384) * 16384;
+    // Total vertices + indices accepted from one file (guards counts that overflow).
+    uint64_t maxElements = uint64_t(1) << 28;
+};
+
+// Throws SceneLoadError("<path>: <problem>") for anything that makes the scene unusable; recoverable problems
+// (missing/corrupt image -> fallback colour, BLEND -> MASK, NaN vertices skipped, ...) go to Scene::warnings.
+Scene loadGltf(const std::string& path, const GltfLoadOptions& options = {});
+
+}  // namespace deepgi
