@@ -1,0 +1,96 @@
+#include "renderer/core/camera.h"
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+namespace deepgi {
+
+glm::mat4 Camera::view() const { return glm::inverse(cameraToWorld); }
+
+glm::mat4 Camera::projection(float aspect) const {
+    aspect = std::max(aspect, 1e-6f);
+    if (perspective) return glm::perspective(yfov, aspect, znear, zfar);
+    const float h = orthoHalfHeight, w = h * aspect;
+    return glm::ortho(-w, w, -h, h, znear, zfar);
+}
+
+void Camera::primaryRay(float x, float y, int width, int height, glm::vec3& origin, glm::vec3& dir) const {
+    const float aspect = float(width) / float(std::max(height, 1));
+    const float ndcX = 2.0f * x / float(width) - 1.0f;
+    const float ndcY = 1.0f - 2.0f * y / float(height);
+    glm::vec3 o, d;
+    if (perspective) {
+        const float t = std::tan(0.5f * yfov);
+        o = glm::vec3(0.0f);
+        d = glm::normalize(glm::vec3(ndcX * t * aspect, ndcY * t, -1.0f));
+    } else {
+        o = glm::vec3(ndcX * orthoHalfHeight * aspect, ndcY * orthoHalfHeight, 0.0f);
+        d = glm::vec3(0.0f, 0.0f, -1.0f);
+    }
+    origin = glm::vec3(cameraToWorld * glm::vec4(o, 1.0f));
+    dir = glm::normalize(glm::vec3(cameraToWorld * glm::vec4(d, 0.0f)));
+}
+
+void fitClipPlanes(Camera& cam, const Aabb& b) {
+    if (!b.valid()) { cam.znear = 0.05f; cam.zfar = 100.0f; return; }
+    const glm::mat4 v = cam.view();
+    float zmin = 1e30f, zmax = -1e30f;
+    for (int i = 0; i < 8; ++i) {
+        glm::vec3 c((i & 1) ? b.hi.x : b.lo.x, (i & 2) ? b.hi.y : b.lo.y, (i & 4) ? b.hi.z : b.lo.z);
+        float d = -(v * glm::vec4(c, 1.0f)).z;  // distance along the view axis
+        zmin = std::min(zmin, d);
+        zmax = std::max(zmax, d);
+    }
+    const float span = std::max(zmax - std::max(zmin, 0.0f), 1e-6f);
+    cam.zfar = zmax + 0.05f * span + 1e-6f;
+    // Near: never behind the camera; at least 1/10000 of far for precision.
+    cam.znear = std::max({zmin * 0.9f, cam.zfar * 1e-4f, 1e-7f});
+    if (cam.znear >= cam.zfar) cam.znear = cam.zfar * 1e-4f;
+}
+
+Camera framingCamera(const Aabb& b) {
+    Camera cam;
+    cam.name = "";
+    glm::vec3 c = b.valid() ? b.center() : glm::vec3(0.0f);
+    float r = std::max(b.radius(), 1e-3f);
+    cam.yfov = glm::radians(50.0f);
+    const float dist = r / std::sin(0.5f * cam.yfov) * 1.05f;
+    glm::vec3 dir = glm::normalize(glm::vec3(0.55f, 0.45f, 1.0f));
+    glm::vec3 eye = c + dir * dist;
+    cam.cameraToWorld = glm::inverse(glm::lookAt(eye, c, glm::vec3(0.0f, 1.0f, 0.0f)));
+    fitClipPlanes(cam, b);
+    return cam;
+}
+
+Camera cameraFromDesc(const CameraDesc& d, const Aabb& bounds) {
+    Camera cam;
+    cam.name = d.name;
+    cam.cameraToWorld = d.cameraToWorld;
+    cam.perspective = d.perspective;
+    cam.yfov = d.yfov;
+    cam.orthoHalfHeight = d.ymag;
+    cam.znear = d.znear > 0.0f ? d.znear : 0.05f;
+    if (d.zfar > cam.znear) cam.zfar = d.zfar;
+    else {
+        Camera fitted = cam;
+        fitClipPlanes(fitted, bounds);
+        cam.zfar = std::max(fitted.zfar, cam.znear * 2.0f);
+    }
+    return cam;
+}
+
+Camera selectCamera(const Scene& scene, const std::string& name) {
+    if (name.empty()) return scene.cameras.empty() ? framingCamera(scene.bounds) : cameraFromDesc(scene.cameras[0], scene.bounds);
+    for (const auto& c : scene.cameras)
+        if (c.name == name) return cameraFromDesc(c, scene.bounds);
+    std::string names;
+    for (const auto& c : scene.cameras) names += (names.empty() ? "" : ", ") + c.name;
+    throw std::runtime_error("no camera named '" + name + "' in " +
+                             (scene.sourcePath.empty() ? std::string("the scene") : scene.sourcePath) +
+                             " (available: " + (names.empty() ? "none" : names) + ")");
+}
+
+}  // namespace deepgi
