@@ -1,0 +1,99 @@
+#include "app/render_job.h"
+
+#include "renderer/core/image_io.h"
+#include "renderer/gl/headless_context.h"
+#include "renderer/renderer.h"
+#include "renderer/scene/gltf_loader.h"
+
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <stdexcept>
+
+namespace deepgi {
+
+static double median(std::vector<double> v) {
+    if (v.empty()) return 0.0;
+    std::sort(v.begin(), v.end());
+    return v.size() % 2 ? v[v.size() / 2] : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]);
+}
+
+static std::string fileNameFor(const std::string& layer) {
+    std::string s;
+    for (char c : layer) s += (c == ' ') ? '_' : char(std::tolower((unsigned char)c));
+    return s;
+}
+
+RenderJobResult runRenderJob(const RenderJob& job) {
+    RenderJobResult result;
+    auto scene = std::make_shared<Scene>(loadGltf(job.scenePath));
+    result.warnings = scene->warnings;
+    result.triangles = scene->triangleCount();
+    Camera camera = selectCamera(*scene, job.camera);
+
+    gl::HeadlessContext context;
+    result.glRenderer = context.renderer();
+    Renderer renderer;
+    renderer.setScene(scene);
+    renderer.resize(job.width, job.height);
+    renderer.setCamera(camera);
+
+    std::map<std::string, std::vector<double>> perPass;
+    std::vector<std::string> passOrder;
+    std::vector<double> frameMs;
+    for (int f = 0; f < job.frames; ++f) {
+        renderer.render(job.settings);
+        double total = 0.0;
+        for (const auto& t : renderer.timings()) {
+            if (!perPass.count(t.name)) passOrder.push_back(t.name);
+            perPass[t.name].push_back(t.ms);
+            total += t.ms;
+        }
+        frameMs.push_back(total);
+    }
+    result.medianFrameMs = median(frameMs);
+
+    std::filesystem::create_directories(job.outDir);
+    const std::string out = job.outDir + "/";
+    writePng8(out + "final.png", job.width, job.height, 4, renderer.readDisplay());
+    FloatImage final = renderer.readFinalRadiance();
+    FloatImage rgb{final.width, final.height, 3, {}};
+    rgb.pixels.reserve(size_t(final.width) * final.height * 3);
+    for (size_t i = 0; i < size_t(final.width) * final.height; ++i)
+        for (int c = 0; c < 3; ++c) rgb.pixels.push_back(final.pixels[i * final.channels + c]);
+    writeExr(out + "final.exr", rgb);
+
+    if (!job.buffers.empty()) {
+        std::vector<std::string> names;
+        if (job.buffers == "all") names = renderer.textures().layerNames();
+        else {
+            std::stringstream ss(job.buffers);
+            std::string item;
+            while (std::getline(ss, item, ',')) if (!item.empty()) names.push_back(item);
+        }
+        for (const auto& n : names) writeExr(out + fileNameFor(n) + ".exr", renderer.readLayer(n));
+        result.buffersWritten = !names.empty();
+    }
+
+    nlohmann::json timings;
+    timings["unit"] = "ms";
+    timings["method"] = "wall clock around glFinish per pass (llvmpipe timer queries miss vertex work)";
+    timings["frames"] = job.frames;
+    timings["gl_renderer"] = result.glRenderer;
+    timings["size"] = {job.width, job.height};
+    nlohmann::json passes = nlohmann::json::array();
+    for (const auto& n : passOrder) passes.push_back({{"pass", n}, {"median_ms", median(perPass[n])}});
+    timings["passes"] = passes;
+    timings["frame_median_ms"] = result.medianFrameMs;
+    timings["geometry_passes"] = renderer.lastGeometryPasses();
+    std::ofstream(out + "timings.json") << timings.dump(2) << "\n";
+    nlohmann::json settings = settingsToJson(job.settings);
+    std::ofstream(out + "settings.json") << settings.dump(2) << "\n";
+    return result;
+}
+
+}  // namespace deepgi

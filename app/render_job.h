@@ -1,0 +1,30 @@
+#pragma once
+// The headless render job behind `deepgi render` (also used by tests through the binary).
+#include "renderer/core/settings.h"
+
+#include <string>
+#include <vector>
+
+namespace deepgi {
+
+struct RenderJob {
+    std::string scenePath;
+    std::string camera;
+    int width = 640, height = 360;
+    int frames = 16;
+    std::string buffers;  // "", "all" or comma-separated layer names
+    std::string outDir = "out/render";
+    Settings settings;
+};
+
+struct RenderJobResult {
+    double medianFrameMs = 0.0;
+    size_t triangles = 0;
+    bool buffersWritten = false;
+    std::string glRenderer;
+    std::vector<std::string> warnings;
+};
+
+RenderJobResult runRenderJob(const RenderJob& job);
+
+}  // namespace deepgi

@@ -1,0 +1,125 @@
+#include "renderer/core/texture_registry.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+namespace deepgi {
+
+static bool sameDecl(const TextureDecl& a, const TextureDecl& b) {
+    return a.name == b.name && a.layerNames == b.layerNames && a.format == b.format && a.target == b.target &&
+           a.size == b.size && a.levels == b.levels;
+}
+
+uint64_t textureBytes(const TextureDecl& d, int w, int h, int levels) {
+    uint64_t bytes = 0;
+    for (int l = 0; l < levels; ++l) {
+        uint64_t lw = std::max(1, w >> l), lh = std::max(1, h >> l);
+        bytes += lw * lh * uint64_t(d.layers()) * gl::formatBits(d.format) / 8;
+    }
+    return bytes;
+}
+
+void TextureRegistry::reconcile(const std::vector<TextureDecl>& decls, int screenW, int screenH, int shadowSize) {
+    std::vector<Entry> next;
+    next.reserve(decls.size());
+    for (const auto& d : decls) {
+        const int w = d.size == SizeRule::Screen ? screenW : shadowSize;
+        const int h = d.size == SizeRule::Screen ? screenH : shadowSize;
+        if (w <= 0 || h <= 0) throw std::runtime_error("texture '" + d.name + "' would have size 0");
+        auto it = std::find_if(entries_.begin(), entries_.end(), [&](const Entry& e) { return e.decl.name == d.name; });
+        if (it != entries_.end() && it->texture && sameDecl(it->decl, d) && it->width == w && it->height == h) {
+            it->decl.description = d.description;
+            it->decl.vis = d.vis;
+            it->decl.group = d.group;
+            next.push_back(std::move(*it));
+            continue;
+        }
+        ++generation_;
+        Entry e;
+        e.decl = d;
+        e.width = w;
+        e.height = h;
+        const int maxLevels = 1 + int(std::log2(double(std::max(w, h))));
+        e.decl.levels = std::min(std::max(d.levels, 1), maxLevels);
+        e.texture = gl::createTexture(d.target, d.name);
+        const GLuint t = e.texture.id();
+        while (glGetError() != GL_NO_ERROR) {}
+        if (d.target == GL_TEXTURE_2D) glTextureStorage2D(t, e.decl.levels, d.format, w, h);
+        else glTextureStorage3D(t, e.decl.levels, d.format, w, h, d.target == GL_TEXTURE_CUBE_MAP_ARRAY ? d.layers() * 6 : d.layers());
+        if (GLenum err = glGetError(); err != GL_NO_ERROR)
+            throw std::runtime_error("cannot allocate texture '" + d.name + "' (" + gl::formatName(d.format) + ", " +
+                                     std::to_string(w) + "x" + std::to_string(h) + "): GL error " + std::to_string(err) +
+                                     (err == GL_OUT_OF_MEMORY ? " (out of memory)" : ""));
+        const bool depth = gl::isDepthFormat(d.format);
+        glTextureParameteri(t, GL_TEXTURE_MIN_FILTER, depth || e.decl.levels > 1 ? GL_NEAREST_MIPMAP_NEAREST : GL_LINEAR);
+        glTextureParameteri(t, GL_TEXTURE_MAG_FILTER, depth ? GL_NEAREST : GL_LINEAR);
+        if (d.vis == Visualize::ShadowDepth) {
+            glTextureParameteri(t, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+            glTextureParameteri(t, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+        }
+        glTextureParameteri(t, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+        glTextureParameteri(t, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+        next.push_back(std::move(e));
+    }
+    if (next.size() != entries_.size()) ++generation_;
+    entries_ = std::move(next);  // textures no longer declared are released here
+}
+
+bool TextureRegistry::has(const std::string& name) const {
+    return std::any_of(entries_.begin(), entries_.end(), [&](const Entry& e) { return e.decl.name == name; });
+}
+
+const TextureRegistry::Entry& TextureRegistry::entry(const std::string& name) const {
+    for (const auto& e : entries_) if (e.decl.name == name) return e;
+    throw std::out_of_range("texture '" + name + "' is not declared in the registry");
+}
+
+GLuint TextureRegistry::id(const std::string& name) const { return entry(name).texture.id(); }
+
+bool TextureRegistry::findLayer(const std::string& layerName, const Entry** out, int* layer) const {
+    for (const auto& e : entries_) {
+        for (int l = 0; l < e.decl.layers(); ++l)
+            if (e.decl.layerNames[l] == layerName) { *out = &e; *layer = l; return true; }
+        if (e.decl.name == layerName) { *out = &e; *layer = 0; return true; }
+    }
+    return false;
+}
+
+std::vector<std::string> TextureRegistry::layerNames() const {
+    std::vector<std::string> names;
+    for (const auto& e : entries_) for (const auto& l : e.decl.layerNames) names.push_back(l);
+    return names;
+}
+
+MemoryReport TextureRegistry::memoryReport() const {
+    MemoryReport r;
+    for (const auto& e : entries_) {
+        const TextureDecl& d = e.decl;
+        const int bits = gl::formatBits(d.format);
+        const bool screen = d.size == SizeRule::Screen;
+        const char* groupName = d.group == MemoryGroup::GBuffer ? "G-buffer" : d.group == MemoryGroup::Radiosity ? "radiosity" : "extra";
+        const int faces = d.target == GL_TEXTURE_CUBE_MAP_ARRAY ? 6 : 1;
+        for (int l = 0; l < d.layers(); ++l) {
+            MemoryLine line{d.layerNames[l], gl::formatName(d.format), groupName, screen ? bits : 0,
+                            uint64_t(e.width) * e.height * bits / 8 * faces};
+            r.lines.push_back(line);
+        }
+        if (e.decl.levels > 1) {
+            uint64_t all = textureBytes(d, e.width, e.height, e.decl.levels) * faces;
+            uint64_t base = textureBytes(d, e.width, e.height, 1) * faces;
+            MemoryLine mips{d.name + " mips 1-" + std::to_string(e.decl.levels - 1), gl::formatName(d.format), "extra",
+                            0, all - base};
+            r.lines.push_back(mips);
+        }
+    }
+    for (const auto& l : r.lines) {
+        if (l.group == "G-buffer") { r.gbufferBitsPerPixel += l.bitsPerPixel; r.gbufferBytes += l.bytes; }
+        else if (l.group == "radiosity") { r.radiosityBitsPerPixel += l.bitsPerPixel; r.radiosityBytes += l.bytes; }
+        else { r.extraBitsPerPixel += l.bitsPerPixel; r.extraBytes += l.bytes; }
+        r.totalBytes += l.bytes;
+    }
+    return r;
+}
+
+}  // namespace deepgi

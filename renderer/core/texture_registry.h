@@ -1,0 +1,74 @@
+#pragma once
+// Every texture the renderer allocates is declared here once: name, format, size rule, description and how to
+// visualise it. The memory report, `--buffers` dumps, screenshots, the inspector and the tests read this registry.
+#include "renderer/gl/gl.h"
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace deepgi {
+
+enum class SizeRule { Screen, ShadowMap };
+enum class Visualize { Color, Radiance, Depth, Normal, ShadowDepth };
+// Which total a texture counts towards in the memory report.
+enum class MemoryGroup { GBuffer, Radiosity, Extra };
+
+struct TextureDecl {
+    std::string name;                     // unique, e.g. "Depth"
+    std::vector<std::string> layerNames;  // one per layer, e.g. {"Depth 1", "Depth 2"}; size = layer count
+    GLenum format = GL_RGBA8;
+    GLenum target = GL_TEXTURE_2D;        // GL_TEXTURE_2D, GL_TEXTURE_2D_ARRAY or GL_TEXTURE_CUBE_MAP_ARRAY
+    SizeRule size = SizeRule::Screen;
+    int levels = 1;
+    MemoryGroup group = MemoryGroup::Extra;
+    Visualize vis = Visualize::Color;
+    std::string description;
+    int layers() const { return int(layerNames.size()); }
+};
+
+struct MemoryLine {
+    std::string name, format, group;
+    int bitsPerPixel = 0;  // per screen pixel (0 for shadow maps, which are not screen-sized)
+    uint64_t bytes = 0;
+};
+
+struct MemoryReport {
+    std::vector<MemoryLine> lines;
+    int gbufferBitsPerPixel = 0, radiosityBitsPerPixel = 0, extraBitsPerPixel = 0;
+    uint64_t gbufferBytes = 0, radiosityBytes = 0, extraBytes = 0, totalBytes = 0;
+};
+
+class TextureRegistry {
+public:
+    struct Entry {
+        TextureDecl decl;
+        gl::TextureHandle texture;
+        int width = 0, height = 0;  // of level 0
+    };
+
+    // Replaces the declaration set: textures whose declaration is unchanged and whose size still fits are kept
+    // (their content survives), the others are (re)created. Throws std::runtime_error on allocation failure.
+    void reconcile(const std::vector<TextureDecl>& decls, int screenW, int screenH, int shadowSize);
+
+    bool has(const std::string& name) const;
+    GLuint id(const std::string& name) const;  // throws std::out_of_range naming the texture if it is not declared
+    const Entry& entry(const std::string& name) const;
+    const std::vector<Entry>& entries() const { return entries_; }
+
+    // Finds "Depth 2" -> (entry "Depth", layer 1), or a texture name -> layer 0.
+    bool findLayer(const std::string& layerName, const Entry** entry, int* layer) const;
+    std::vector<std::string> layerNames() const;  // every viewable layer, in declaration order
+
+    MemoryReport memoryReport() const;
+    // Changes whenever a texture is created or released (framebuffers that attach textures must be rebuilt).
+    uint64_t generation() const { return generation_; }
+
+private:
+    std::vector<Entry> entries_;
+    uint64_t generation_ = 1;
+};
+
+uint64_t textureBytes(const TextureDecl& d, int w, int h, int levels);
+
+}  // namespace deepgi

@@ -1,0 +1,56 @@
+#pragma once
+// Shader programs built from files in the shader folder, with `#include "file"` and injected #defines.
+// Compile errors name the file and line. A program that fails to rebuild keeps its last good version.
+#include <glad/gl.h>
+
+#include <cstdint>
+#include <map>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace deepgi::gl {
+
+struct ShaderError : std::runtime_error {
+    using std::runtime_error::runtime_error;
+};
+
+struct ProgramDesc {
+    std::string vertex, geometry, fragment, compute;  // file names relative to the shader folder ("" = none)
+    std::vector<std::string> defines;                 // "NAME" or "NAME VALUE"
+    std::string key() const;
+};
+
+class ShaderLibrary {
+public:
+    explicit ShaderLibrary(std::string shaderDir);
+    ~ShaderLibrary();
+    ShaderLibrary(const ShaderLibrary&) = delete;
+    ShaderLibrary& operator=(const ShaderLibrary&) = delete;
+
+    // The program for desc, compiled on first use. Throws ShaderError ("file:line: message") if it has never
+    // compiled successfully.
+    GLuint get(const ProgramDesc& desc);
+
+    // Recompiles the programs whose source files (includes too) changed on disk. Returns how many were rebuilt;
+    // failures keep the last good program and are listed in errors().
+    int reloadChanged();
+    int reloadAll();
+    const std::vector<std::string>& errors() const { return errors_; }
+    const std::string& directory() const { return dir_; }
+    void setDirectory(const std::string& dir);
+
+private:
+    struct Entry {
+        ProgramDesc desc;
+        GLuint program = 0;
+        std::map<std::string, int64_t> files;  // path -> mtime at last build attempt
+        std::string error;
+    };
+    GLuint build(const ProgramDesc& desc, std::map<std::string, int64_t>& files);
+    std::string dir_;
+    std::map<std::string, Entry> entries_;
+    std::vector<std::string> errors_;
+};
+
+}  // namespace deepgi::gl

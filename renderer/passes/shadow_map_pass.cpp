@@ -1,0 +1,57 @@
+#include "renderer/passes/shadow_map_pass.h"
+
+namespace deepgi {
+
+void ShadowMapPass::declare(const PipelineConfig& c, std::vector<TextureDecl>& out) const {
+    if (c.shadowMapLayers > 0) {
+        TextureDecl d{"Shadow Maps", {}, GL_DEPTH_COMPONENT32F, GL_TEXTURE_2D_ARRAY, SizeRule::ShadowMap, 1,
+                      MemoryGroup::Extra, Visualize::ShadowDepth, "Depth from each directional and spot light"};
+        for (int i = 0; i < c.shadowMapLayers; ++i) d.layerNames.push_back("Shadow Map " + std::to_string(i + 1));
+        out.push_back(d);
+    }
+    if (c.shadowCubeLayers > 0) {
+        TextureDecl d{"Shadow Cubes", {}, GL_DEPTH_COMPONENT32F, GL_TEXTURE_CUBE_MAP_ARRAY, SizeRule::ShadowMap, 1,
+                      MemoryGroup::Extra, Visualize::ShadowDepth, "Distance to each point light / far, 6 faces per light"};
+        for (int i = 0; i < c.shadowCubeLayers; ++i) d.layerNames.push_back("Shadow Cube " + std::to_string(i + 1));
+        out.push_back(d);
+    }
+}
+
+void ShadowMapPass::execute(FrameContext& ctx) {
+    if (renderedKey_ == ctx.shadowKey && renderedGeneration_ == ctx.textures.generation()) return;
+    renderedKey_ = ctx.shadowKey;
+    renderedGeneration_ = ctx.textures.generation();
+    for (const char* texName : {"Shadow Maps", "Shadow Cubes"}) {
+        if (!ctx.textures.has(texName)) continue;
+        GLuint t = ctx.textures.id(texName);
+        glTextureParameteri(t, GL_TEXTURE_COMPARE_MODE, GL_COMPARE_REF_TO_TEXTURE);
+        glTextureParameteri(t, GL_TEXTURE_COMPARE_FUNC, GL_LEQUAL);
+    }
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_LESS);
+    glDepthMask(GL_TRUE);
+    for (const auto& caster : ctx.shadowCasters) {
+        const char* texName = caster.cube ? "Shadow Cubes" : "Shadow Maps";
+        const auto& e = ctx.textures.entry(texName);
+        GLuint fbo = ctx.fbos.get({{GL_DEPTH_ATTACHMENT, e.texture.id(), 0, caster.layer}}, texName);
+        glBindFramebuffer(GL_FRAMEBUFFER, fbo);
+        glViewport(0, 0, e.width, e.height);
+        glClearDepth(1.0);
+        glClear(GL_DEPTH_BUFFER_BIT);
+        // Both faces cast shadows (the reference's shadow rays are blocked by either side).
+        for (bool masked : {false, true}) {
+            if (masked ? !ctx.scene.hasMasked() : !ctx.scene.hasOpaque()) continue;
+            std::vector<std::string> defs;
+            if (masked) defs.push_back("MASKED");
+            if (caster.cube) defs.push_back("CUBE");
+            GLuint prog = ctx.shaders.get({"shadow_map.vert", "", "shadow_map.frag", "", defs});
+            glUseProgram(prog);
+            setUniform(prog, "uLightViewProj", caster.viewProj);
+            setUniform(prog, "uLightPos", caster.position);
+            setUniform(prog, "uShadowFar", caster.far);
+            ctx.scene.draw(prog, masked, false);
+        }
+    }
+}
+
+}  // namespace deepgi

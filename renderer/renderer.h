@@ -1,0 +1,104 @@
+#pragma once
+// deepgi's renderer: the Deep G-Buffer GI pipeline over a scene, into registered textures. Needs a current
+// OpenGL 4.5 context (OSMesa headless, or a window's); knows nothing of windows or UI.
+#include "renderer/core/camera.h"
+#include "renderer/core/image_io.h"
+#include "renderer/core/settings.h"
+#include "renderer/core/texture_registry.h"
+#include "renderer/gl/shader_library.h"
+#include "renderer/passes/pass.h"
+#include "renderer/scene/scene.h"
+
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace deepgi {
+
+enum class TimingMode {
+    None,       // no synchronisation
+    WallClock,  // glFinish around each pass (llvmpipe: timer queries miss vertex work)
+    GpuQueries  // GL_TIME_ELAPSED per pass, read one frame late (GPUs)
+};
+
+struct PassTiming {
+    std::string name;
+    double ms = 0.0;
+};
+
+struct RendererOptions {
+    std::string shaderDir = DEEPGI_SHADER_DIR;
+    TimingMode timing = TimingMode::WallClock;
+};
+
+class Renderer {
+public:
+    explicit Renderer(RendererOptions options = {});
+    ~Renderer();
+    Renderer(const Renderer&) = delete;
+    Renderer& operator=(const Renderer&) = delete;
+
+    void setScene(std::shared_ptr<const Scene> scene);  // uploads it; resets the history
+    const Scene& scene() const { return *scene_; }
+    // 0 x 0 is allowed (a minimised window): render() then does nothing.
+    void resize(int width, int height);
+    int width() const { return width_; }
+    int height() const { return height_; }
+    // The camera of the next frame. Call resetHistory() as well on a cut (a jump that is not motion).
+    void setCamera(const Camera& camera) { camera_ = camera; }
+    const Camera& camera() const { return camera_; }
+    void resetHistory() { historyValid_ = false; }
+    bool historyValid() const { return historyValid_; }
+
+    // Declares and allocates the textures the settings need without rendering (for memory reports).
+    void prepare(const Settings& settings);
+    // Renders one frame. Throws gl::ShaderError if a shader has never compiled, std::runtime_error on allocation
+    // failure (e.g. a size too large for memory).
+    void render(const Settings& settings);
+
+    TextureRegistry& textures() { return textures_; }
+    const TextureRegistry& textures() const { return textures_; }
+    gl::ShaderLibrary& shaders() { return *shaders_; }
+    const std::vector<PassTiming>& timings() const { return timings_; }
+    const std::vector<std::unique_ptr<RenderPass>>& passes() const { return passes_; }
+    const PipelineConfig& config() const { return config_; }
+    uint64_t frameIndex() const { return frameIndex_; }
+    int lastGeometryPasses() const;
+    void setTimingMode(TimingMode m) { options_.timing = m; }
+
+    // Reads one registered layer back, row 0 at the top. decode: depth -> distance along the view axis (sky reads
+    // as the far plane), oct16 normals -> unit xyz, others raw. A cube layer comes as its 6 faces side by side.
+    FloatImage readLayer(const std::string& layerName, int level = 0, bool decode = true) const;
+    FloatImage readFinalRadiance() const { return readLayer("Final Radiance"); }
+    // The display image (sRGB 8-bit RGBA), row 0 at the top.
+    std::vector<unsigned char> readDisplay() const;
+
+private:
+    PipelineConfig makeConfig(const Settings& s) const;
+    void setupLights(const Settings& s);
+    void uploadFrameUniforms(const Settings& s);
+
+    RendererOptions options_;
+    std::unique_ptr<gl::ShaderLibrary> shaders_;
+    std::shared_ptr<const Scene> scene_;
+    std::unique_ptr<SceneGpu> sceneGpu_;
+    TextureRegistry textures_;
+    FramebufferCache fbos_;
+    uint64_t fboGeneration_ = 0;
+    std::vector<std::unique_ptr<RenderPass>> passes_;
+    PipelineConfig config_;
+    bool configValid_ = false;
+    gl::VertexArrayHandle fullscreenVao_;
+    gl::BufferHandle frameUbo_, lightSsbo_;
+    int lightCount_ = 0;
+    std::vector<ShadowCaster> casters_;
+    uint64_t shadowKey_ = 0;
+    int width_ = 0, height_ = 0;
+    Camera camera_, prevCamera_;
+    bool historyValid_ = false;
+    uint64_t frameIndex_ = 0;
+    std::vector<PassTiming> timings_;
+    std::vector<gl::QueryHandle> queries_;
+};
+
+}  // namespace deepgi

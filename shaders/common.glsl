@@ -1,0 +1,62 @@
+// Frame-wide uniforms and helpers shared by every pass. Mirrors renderer/core/frame_uniforms.h (std140).
+layout(std140, binding = 0) uniform FrameUniforms {
+    mat4 uView;
+    mat4 uProj;
+    mat4 uViewProj;
+    mat4 uInvViewProj;
+    mat4 uPrevViewProj;
+    mat4 uPrevInvViewProj;
+    vec4 uCameraPos;      // xyz; w = 1 perspective, 0 orthographic
+    vec4 uCameraForward;  // xyz
+    vec4 uPrevCameraPos;  // xyz; w = perspective flag of last frame
+    vec4 uPrevCameraForward;
+    vec4 uViewport;       // width, height, 1/width, 1/height
+    vec4 uClip;           // near, far, projScale (pixels per scene unit at distance 1; ortho: per unit), frame index
+    vec4 uPrevClip;       // near, far of last frame
+    vec4 uBackground;     // rgb backdrop radiance
+};
+
+const float PI = 3.14159265358979;
+const float MAX_RADIANCE = 65000.0;  // below the R11F_G11F_B10F maximum (64512 for B is clamped by the format)
+
+// Finite, non-negative and below the format maximum: everything a later frame reads goes through this.
+vec3 sanitize(vec3 v) {
+    if (any(isnan(v)) || any(isinf(v))) return vec3(0.0);
+    return clamp(v, vec3(0.0), vec3(MAX_RADIANCE));
+}
+
+// Distance along the view axis from a [0,1] depth-buffer value. clip = (near, far), persp = 1 or 0.
+float eyeDepth(float d, vec2 clip, float persp) {
+    float n = clip.x, f = clip.y;
+    if (persp > 0.5) {
+        float z = d * 2.0 - 1.0;
+        return 2.0 * n * f / max(f + n - z * (f - n), 1e-30);
+    }
+    return n + d * (f - n);
+}
+float eyeDepthCurrent(float d) { return eyeDepth(d, uClip.xy, uCameraPos.w); }
+float eyeDepthPrevious(float d) { return eyeDepth(d, uPrevClip.xy, uPrevCameraPos.w); }
+
+// World position of a pixel position (in pixels, centre = +0.5) and depth-buffer value.
+vec3 worldFromDepth(vec2 pixel, float d, mat4 invViewProj) {
+    vec4 ndc = vec4(pixel * uViewport.zw * 2.0 - 1.0, d * 2.0 - 1.0, 1.0);
+    vec4 w = invViewProj * ndc;
+    return w.xyz / w.w;
+}
+
+// Octahedral unit-vector encoding into [-1,1]^2 (stored in RG8_SNORM).
+vec2 signNotZero(vec2 v) { return vec2(v.x >= 0.0 ? 1.0 : -1.0, v.y >= 0.0 ? 1.0 : -1.0); }
+vec2 octEncode(vec3 n) {
+    n /= max(abs(n.x) + abs(n.y) + abs(n.z), 1e-20);
+    vec2 p = n.xy;
+    if (n.z < 0.0) p = (1.0 - abs(p.yx)) * signNotZero(p);
+    return p;
+}
+vec3 octDecode(vec2 e) {
+    vec3 n = vec3(e, 1.0 - abs(e.x) - abs(e.y));
+    if (n.z < 0.0) n.xy = (1.0 - abs(n.yx)) * signNotZero(n.xy);
+    float l = length(n);
+    return l > 0.0 ? n / l : vec3(0.0, 0.0, 1.0);
+}
+
+bool isSky(float d) { return d >= 1.0; }

@@ -1,0 +1,22 @@
+#version 450 core
+// Emits each triangle once per layer (gl_Layer), so one geometry pass fills both layers of the deep G-buffer.
+#include "common.glsl"
+layout(triangles) in;
+layout(triangle_strip, max_vertices = 6) out;
+in VS { vec3 world; vec3 normal; vec2 uv; } vs[];
+out GS { vec3 world; vec3 normal; vec2 uv; } gs;
+uniform int uFirstLayer;  // 0, or 1 for the second pass of depth peeling
+uniform int uLayerCount;  // 1 or 2
+void main() {
+    for (int layer = uFirstLayer; layer < uFirstLayer + uLayerCount; ++layer) {
+        for (int i = 0; i < 3; ++i) {
+            gl_Layer = layer;  // set before every EmitVertex: outputs are undefined after it
+            gs.world = vs[i].world;
+            gs.normal = vs[i].normal;
+            gs.uv = vs[i].uv;
+            gl_Position = uViewProj * vec4(vs[i].world, 1.0);
+            EmitVertex();
+        }
+        EndPrimitive();
+    }
+}

@@ -1,0 +1,28 @@
+#version 450 core
+// Outgoing Lambertian radiance of one deep G-buffer layer, the light the gather collects:
+//   B = Le + albedo/pi * (E_direct + (1 - damping) * w * E_indirect_last_frame)   (last term layer 1 only)
+#include "common.glsl"
+#include "lighting.glsl"
+layout(binding = 4) uniform sampler2DArray uDepth;
+layout(binding = 7) uniform sampler2DArray uAlbedo;
+layout(binding = 8) uniform sampler2DArray uNormal;
+layout(binding = 9) uniform sampler2DArray uEmission;
+layout(binding = 10) uniform sampler2D uReprojected;
+uniform int uLayer;
+uniform int uHasEmission;
+uniform int uFeedback;      // add last frame's indirect light (multi-bounce)
+uniform float uDamping;
+layout(location = 0) out vec3 oRadiance;
+void main() {
+    ivec2 pix = ivec2(gl_FragCoord.xy);
+    float d = texelFetch(uDepth, ivec3(pix, uLayer), 0).r;
+    if (isSky(d)) { oRadiance = vec3(0.0); return; }
+    vec3 P = worldFromDepth(vec2(pix) + 0.5, d, uInvViewProj);
+    vec3 n = octDecode(texelFetch(uNormal, ivec3(pix, uLayer), 0).rg);
+    vec3 albedo = texelFetch(uAlbedo, ivec3(pix, uLayer), 0).rgb;
+    vec3 E = directIrradiance(P, n);
+    if (uFeedback != 0 && uLayer == 0) E += (1.0 - uDamping) * texelFetch(uReprojected, pix, 0).rgb;
+    vec3 B = albedo / PI * E;
+    if (uHasEmission != 0) B += texelFetch(uEmission, ivec3(pix, uLayer), 0).rgb;
+    oRadiance = sanitize(B);
+}

@@ -1,0 +1,70 @@
+// Direct light from the punctual lights with shadow maps. Mirrors renderer/scene/lighting.cpp.
+struct GpuLight {
+    vec4 radiance;      // rgb = colour * intensity; w = type (0 directional, 1 point, 2 spot)
+    vec4 position;      // xyz; w = range (0 = infinite)
+    vec4 direction;     // xyz = direction light travels; w = cos(outer cone)
+    vec4 params;        // x = cos(inner cone), y = shadow layer (-1 none), z = shadow texel size at distance 1 (or world), w = shadow far (point)
+    mat4 shadowMatrix;  // world -> shadow clip (directional, spot)
+};
+layout(std430, binding = 1) readonly buffer Lights { GpuLight uLights[]; };
+uniform int uLightCount;
+uniform float uShadowBias;  // in shadow-map texels
+layout(binding = 14) uniform sampler2DArrayShadow uShadowMaps;
+layout(binding = 15) uniform samplerCubeArrayShadow uShadowCubes;
+
+float rangeWindow(float dist, float range) {
+    if (range <= 0.0) return 1.0;
+    float r = dist / range;
+    float w = clamp(1.0 - r * r * r * r, 0.0, 1.0);
+    return w * w;
+}
+
+float shadowFactor(GpuLight L, vec3 P, vec3 n, vec3 toLight, float dist) {
+    int layer = int(L.params.y);
+    if (layer < 0) return 1.0;
+    int type = int(L.radiance.w);
+    // Normal offset grows with the texel footprint (constant for the sun, with distance for spot/point).
+    float texel = type == 0 ? L.params.z : L.params.z * dist;
+    float cosT = clamp(dot(n, toLight), 0.0, 1.0);
+    vec3 Pb = P + n * (uShadowBias * texel * (1.0 + 2.0 * sqrt(1.0 - cosT * cosT))) + toLight * (0.5 * texel);
+    if (type == 1) {
+        vec3 d = Pb - L.position.xyz;
+        return texture(uShadowCubes, vec4(d, float(layer)), length(d) / L.params.w);
+    }
+    vec4 c = L.shadowMatrix * vec4(Pb, 1.0);
+    if (c.w <= 0.0) return 1.0;
+    vec3 s = c.xyz / c.w * 0.5 + 0.5;
+    if (any(lessThan(s.xy, vec2(0.0))) || any(greaterThan(s.xy, vec2(1.0))) || s.z >= 1.0) return 1.0;
+    return texture(uShadowMaps, vec4(s.xy, float(layer), s.z));
+}
+
+// Shadowed irradiance on the surface at P with unit normal n.
+vec3 directIrradiance(vec3 P, vec3 n) {
+    vec3 E = vec3(0.0);
+    for (int i = 0; i < uLightCount; ++i) {
+        GpuLight L = uLights[i];
+        int type = int(L.radiance.w);
+        vec3 toLight;
+        float dist;
+        float atten = 1.0;
+        if (type == 0) {
+            toLight = -L.direction.xyz;
+            dist = 1e30;
+        } else {
+            vec3 d = L.position.xyz - P;
+            float d2 = dot(d, d);
+            dist = sqrt(d2);
+            toLight = dist > 0.0 ? d / dist : vec3(0.0, 1.0, 0.0);
+            atten = rangeWindow(dist, L.position.w) / max(d2, 1e-4);
+            if (type == 2) {
+                float cd = dot(L.direction.xyz, -toLight);
+                float t = clamp((cd - L.direction.w) / max(L.params.x - L.direction.w, 1e-4), 0.0, 1.0);
+                atten *= t * t;
+            }
+        }
+        float cosT = dot(n, toLight);
+        if (cosT <= 0.0 || atten <= 0.0) continue;
+        E += L.radiance.rgb * atten * cosT * shadowFactor(L, P, n, toLight, dist);
+    }
+    return E;
+}

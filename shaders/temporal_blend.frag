@@ -1,0 +1,16 @@
+#version 450 core
+// E = w * E_reprojected + (1 - w) * E_current with w = alpha * (1 - smoothstep(start, end, world distance)).
+#include "common.glsl"
+#include "reprojection.glsl"
+layout(binding = 12) uniform sampler2D uCurrent;
+layout(binding = 10) uniform sampler2D uReprojected;
+uniform float uAlpha;
+layout(location = 0) out vec3 oValue;
+void main() {
+    ivec2 pix = ivec2(gl_FragCoord.xy);
+    vec2 prevUV;
+    float w = uAlpha * reprojectionWeight(pix, prevUV);
+    vec3 cur = texelFetch(uCurrent, pix, 0).rgb;
+    vec3 prev = texelFetch(uReprojected, pix, 0).rgb;
+    oValue = sanitize(mix(cur, prev, w));
+}

@@ -1,0 +1,36 @@
+#include "gl_fixture.h"
+
+#include "renderer/core/image_io.h"
+
+namespace deepgi::test {
+
+void dumpIfRequested(const std::string& name, const FloatImage& img) {
+    if (const char* dir = std::getenv("DEEPGI_TEST_OUT")) writeExr(std::string(dir) + "/" + name + ".exr", img);
+}
+
+std::shared_ptr<Scene> cornellScene() {
+    using namespace procedural;
+    auto s = std::make_shared<Scene>();
+    int white = addMaterial(*s, glm::vec3(0.75f));
+    int red = addMaterial(*s, glm::vec3(0.75f, 0.1f, 0.1f));
+    int green = addMaterial(*s, glm::vec3(0.1f, 0.75f, 0.1f));
+    const float h = 1.0f;
+    addQuad(*s, {-h, 0, h}, {h, 0, h}, {h, 0, -h}, {-h, 0, -h}, white);           // floor (+Y)
+    addQuad(*s, {-h, 0, -h}, {h, 0, -h}, {h, 2, -h}, {-h, 2, -h}, white);         // back wall (+Z)
+    addQuad(*s, {-h, 0, h}, {-h, 0, -h}, {-h, 2, -h}, {-h, 2, h}, red);           // left wall (+X)
+    addQuad(*s, {h, 0, -h}, {h, 0, h}, {h, 2, h}, {h, 2, -h}, green);             // right wall (-X)
+    addQuad(*s, {-h, 0, h}, {-h, 2, h}, {h, 2, h}, {h, 0, h}, white);             // front wall (-Z), camera inside
+    // Ceiling (-Y) with a hole |x|,|z| < 0.3.
+    const float a = 0.3f;
+    addQuad(*s, {-h, 2, -h}, {h, 2, -h}, {h, 2, -a}, {-h, 2, -a}, white);
+    addQuad(*s, {-h, 2, a}, {h, 2, a}, {h, 2, h}, {-h, 2, h}, white);
+    addQuad(*s, {-h, 2, -a}, {-a, 2, -a}, {-a, 2, a}, {-h, 2, a}, white);
+    addQuad(*s, {a, 2, -a}, {h, 2, -a}, {h, 2, a}, {a, 2, a}, white);
+    addBox(*s, {-0.6f, 0.0f, -0.5f}, {-0.1f, 1.2f, 0.0f}, white, false);
+    addSun(*s, glm::vec3(-0.8f, -1.0f, -0.15f), 3.5f);
+    addCamera(*s, "front", {0.0f, 1.0f, 0.95f}, {0.0f, 0.9f, -1.0f}, 70.0f);
+    s->computeBounds();
+    return s;
+}
+
+}  // namespace deepgi::test

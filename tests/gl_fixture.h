@@ -1,0 +1,44 @@
+#pragma once
+// Headless GL fixture: one OSMesa context per test process (ctest runs each test in its own process).
+#include "renderer/gl/headless_context.h"
+#include "renderer/renderer.h"
+#include "renderer/scene/procedural.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <memory>
+
+namespace deepgi::test {
+
+class GLTest : public ::testing::Test {
+protected:
+    void SetUp() override { context_ = std::make_unique<gl::HeadlessContext>(); }
+    void TearDown() override { context_.reset(); }
+    std::unique_ptr<gl::HeadlessContext> context_;
+};
+
+inline bool allFinite(const FloatImage& img) {
+    for (float v : img.pixels) if (!std::isfinite(v)) return false;
+    return true;
+}
+
+inline double meanChannel(const FloatImage& img, int c, int x0 = 0, int y0 = 0, int x1 = -1, int y1 = -1) {
+    if (x1 < 0) x1 = img.width;
+    if (y1 < 0) y1 = img.height;
+    double sum = 0;
+    int n = 0;
+    for (int y = y0; y < y1; ++y)
+        for (int x = x0; x < x1; ++x) { sum += img.at(x, y, c); ++n; }
+    return n ? sum / n : 0.0;
+}
+
+// Writes img to $DEEPGI_TEST_OUT/<name>.exr when that variable is set (for looking at test images).
+void dumpIfRequested(const std::string& name, const FloatImage& img);
+
+// A 2x2x2 m room (inward walls: red -X, green +X, white otherwise) with a square hole in the ceiling, a sun
+// shining through it and a camera looking in from the front wall.
+std::shared_ptr<Scene> cornellScene();
+
+}  // namespace deepgi::test

@@ -1,0 +1,33 @@
+// End-to-end pipeline properties on a procedural Cornell box.
+#include "gl_fixture.h"
+
+using namespace deepgi;
+using namespace deepgi::test;
+
+TEST_F(GLTest, PipelineRendersFiniteImageWithColourBleeding) {
+    auto scene = cornellScene();
+    gl::installDebugOutput(false);
+    Renderer r;
+    r.setScene(scene);
+    r.resize(160, 120);
+    r.setCamera(selectCamera(*scene, "front"));
+    Settings s;
+    s.radius = 1.5f;
+    s.minSeparation = 0.2f;
+    for (int i = 0; i < 12; ++i) r.render(s);
+    FloatImage img = r.readFinalRadiance();
+    dumpIfRequested("pipeline_cornell", img);
+    ASSERT_TRUE(allFinite(img));
+    for (const auto& name : r.textures().layerNames()) {
+        FloatImage b = r.readLayer(name);
+        EXPECT_TRUE(allFinite(b)) << name;
+        dumpIfRequested("layer_" + name, b);
+    }
+    // The sun lights the red wall: indirect light on the (unlit) white floor and back wall is red.
+    FloatImage indirect = r.readLayer("Output Radiance");
+    dumpIfRequested("pipeline_indirect", indirect);
+    const int w = indirect.width, h = indirect.height;
+    double red = meanChannel(indirect, 0, w / 4, h / 4, 3 * w / 4, h), green = meanChannel(indirect, 1, w / 4, h / 4, 3 * w / 4, h);
+    EXPECT_GT(red, 0.01);
+    EXPECT_GT(red, 2.0 * green) << "colour bleeding from the lit red wall";
+}
