@@ -442,12 +442,14 @@ public:
     Progress(bool enabled, int total) : enabled_(enabled), total_(std::max(total, 1)) {
         tty_ = enabled_ && isatty(fileno(stderr));
     }
-    // Called by the monitoring thread only.
+    // Called by the monitoring thread only: the bar is redrawn 4 times a second, the plain lines every 10%.
     void update(int done, double elapsed, bool final) {
         if (!enabled_) return;
         const double f = double(done) / total_;
         const double eta = f > 0.0 ? elapsed * (1.0 - f) / f : -1.0;
         if (tty_) {
+            if (!final && elapsed - lastDraw_ < 0.25) return;
+            lastDraw_ = elapsed;
             constexpr int kWidth = 30;
             const int filled = int(f * kWidth);
             std::string bar(size_t(filled), '#');
@@ -472,6 +474,7 @@ private:
     bool enabled_, tty_ = false;
     int total_;
     int lastDecile_ = 0;
+    double lastDraw_ = -1.0;
 };
 
 }  // namespace
@@ -570,18 +573,13 @@ ReferenceResult ReferenceTracer::render(const Camera& camera, const Settings& se
     threads.reserve(size_t(nThreads));
     for (int i = 0; i < nThreads; ++i) threads.emplace_back(worker);
     if (opt.progress) {
-        auto lastPrint = std::chrono::steady_clock::now() - std::chrono::seconds(1);
         while (tilesDone.load() < nTiles) {
             std::this_thread::sleep_for(std::chrono::milliseconds(20));
             {
                 std::lock_guard<std::mutex> lock(errorMutex);
                 if (!workerError.empty()) break;
             }
-            const auto now = std::chrono::steady_clock::now();
-            if (now - lastPrint >= std::chrono::milliseconds(250)) {
-                lastPrint = now;
-                progress.update(tilesDone.load(), elapsed(), false);
-            }
+            progress.update(tilesDone.load(), elapsed(), false);
         }
     }
     for (auto& t : threads) t.join();
