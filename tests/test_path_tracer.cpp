@@ -430,3 +430,44 @@ TEST(ReferencePathTracer, OptionsAndSizeParsing) {
     scene.parts[0].indices[2] = 17;
     EXPECT_THROW(ReferenceTracer{scene}, std::runtime_error);
 }
+
+// Textures: sRGB-decoded rgb, linear alpha, bilinear between texel centres, wrap modes, v = 0 at the image top.
+TEST(ReferencePathTracer, TexturesAreSrgbDecodedBilinearAndTopDown) {
+    // Emission only (no lights, no bounces): the pixel value is emissiveFactor * decoded texture.
+    // 2x2 image: row 0 (top) = [black, white], row 1 = [grey 128, grey 128].
+    Scene scene;
+    scene.images.push_back({"tex", 2, 2, {0, 0, 0, 255, 255, 255, 255, 255, 128, 128, 128, 255, 128, 128, 128, 255}});
+    Texture t;
+    t.image = 0;
+    t.wrapS = WrapMode::Repeat;
+    t.wrapT = WrapMode::ClampToEdge;
+    scene.textures.push_back(t);
+    Material m;
+    m.baseColorFactor = glm::vec4(0.0f, 0.0f, 0.0f, 1.0f);
+    m.emissiveFactor = glm::vec3(2.0f);
+    m.emissiveTexture = 0;
+    scene.materials.push_back(m);
+    // One quad in the XZ plane facing +y with uv = (x, z) over [0, 2] x [0, 1].
+    MeshPart part;
+    const glm::vec3 n(0, 1, 0);
+    part.vertices = {{{0, 0, 0}, n, {0, 0}}, {{0, 0, 1}, n, {0, 1}}, {{2, 0, 1}, n, {2, 1}}, {{2, 0, 0}, n, {2, 0}}};
+    part.indices = {0, 1, 2, 0, 2, 3};
+    part.material = 0;
+    scene.parts.push_back(part);
+    scene.computeBounds();
+    const auto valueAt = [&](float u, float v) {
+        Camera cam = lookAtCamera({u, 1, v}, {u, 0, v}, {0, 0, -1});
+        cam.perspective = false;
+        cam.orthoHalfHeight = 1e-4f;
+        const ReferenceResult r = renderReference(scene, cam, noSun(), smallOptions(1, 4, 0));
+        return r.final.at(0, 0, 0);
+    };
+    const float grey = srgbToLinear(128.0f / 255.0f);
+    EXPECT_NEAR(valueAt(0.25f, 0.05f), 0.0f, 1e-3f);                 // top-left texel (v clamped)
+    EXPECT_NEAR(valueAt(0.75f, 0.05f), 2.0f, 2e-3f);                 // top-right texel
+    EXPECT_NEAR(valueAt(0.5f, 0.05f), 1.0f, 2e-3f);                  // halfway: linear blend of decoded values
+    EXPECT_NEAR(valueAt(1.0f, 0.05f), 1.0f, 2e-3f);                  // u wraps: blend of the right and left texels
+    EXPECT_NEAR(valueAt(1.25f, 0.05f), 0.0f, 1e-3f);                 // repeated
+    EXPECT_NEAR(valueAt(0.25f, 0.95f), 2.0f * grey, 2e-3f);          // bottom row, sRGB 128 -> 0.2158
+    EXPECT_NEAR(valueAt(0.25f, 0.5f), 0.5f * 2.0f * grey, 2e-3f);    // between the rows
+}
