@@ -228,10 +228,16 @@ TEST(ReferencePathTracer, ErrorFallsAsInverseSqrtSpp) {
         }
         prev = e;
     }
-    // The indirect part is real: the walls are lit mostly by the floor.
-    double indirect = 0.0;
-    for (float v : ref.indirect.pixels) indirect += v;
-    EXPECT_GT(indirect, 0.0);
+    // The indirect part is real (the walls are lit mostly by the floor), and final = direct + indirect.
+    double indirect = 0.0, total = 0.0;
+    for (size_t i = 0; i < ref.final.pixels.size(); ++i) {
+        indirect += ref.indirect.pixels[i];
+        total += ref.final.pixels[i];
+        const float sum = ref.direct.pixels[i] + ref.indirect.pixels[i];
+        EXPECT_NEAR(ref.final.pixels[i], sum, 1e-5f * sum + 1e-7f);
+    }
+    EXPECT_GT(indirect, 0.1 * total);
+    std::printf("[convergence] indirect share of the image: %.3f\n", indirect / total);
 }
 
 // 4. Same seed: bit-identical whatever the thread count; another seed: a different image.
