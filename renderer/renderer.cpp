@@ -211,11 +211,7 @@ void Renderer::render(const Settings& s) {
     timings_.clear();
     if (width_ <= 0 || height_ <= 0) return;  // minimised: nothing to draw, nothing lost
     prepare(s);
-    setupLights(s);
-    uploadFrameUniforms(s);
-    FrameContext ctx{s, config_, textures_, *shaders_, fbos_, *sceneGpu_, fullscreenVao_.id(), lightSsbo_.id(),
-                     lightCount_, casters_, shadowKey_, width_, height_, historyValid_,
-                     s.varyTaps ? float(frameIndex_ % 1024) * 0.618034f : 0.0f, glm::vec4(0.0f)};
+    FrameContext ctx = makeContext(s);
 
     std::vector<RenderPass*> order;
     for (const auto& p : passes_) order.push_back(p.get());
@@ -238,6 +234,27 @@ void Renderer::render(const Settings& s) {
     prevCamera_ = camera_;
     historyValid_ = true;
     ++frameIndex_;
+}
+
+FrameContext Renderer::makeContext(const Settings& s) {
+    setupLights(s);
+    uploadFrameUniforms(s);
+    return FrameContext{s, config_, textures_, *shaders_, fbos_, *sceneGpu_, fullscreenVao_.id(), lightSsbo_.id(),
+                        lightCount_, casters_, shadowKey_, width_, height_, historyValid_,
+                        s.varyTaps ? float(frameIndex_ % 1024) * 0.618034f : 0.0f};
+}
+
+void Renderer::executePass(const std::string& passName, const Settings& s) {
+    if (width_ <= 0 || height_ <= 0) return;
+    prepare(s);
+    FrameContext ctx = makeContext(s);
+    for (const auto& p : passes_)
+        if (passName == p->name()) {
+            p->execute(ctx);
+            glBindFramebuffer(GL_FRAMEBUFFER, 0);
+            return;
+        }
+    throw std::runtime_error("no pass named '" + passName + "'");
 }
 
 FloatImage Renderer::readLayer(const std::string& layerName, int level, bool decode) const {

@@ -56,6 +56,9 @@ public:
     // failure (e.g. a size too large for memory).
     void render(const Settings& settings);
 
+    // Runs one pass (by name()) alone on the current textures with the last frame's state: for tests.
+    void executePass(const std::string& passName, const Settings& settings);
+
     TextureRegistry& textures() { return textures_; }
     const TextureRegistry& textures() const { return textures_; }
     gl::ShaderLibrary& shaders() { return *shaders_; }
@@ -77,6 +80,7 @@ private:
     PipelineConfig makeConfig(const Settings& s) const;
     void setupLights(const Settings& s);
     void uploadFrameUniforms(const Settings& s);
+    FrameContext makeContext(const Settings& s);
 
     RendererOptions options_;
     std::unique_ptr<gl::ShaderLibrary> shaders_;

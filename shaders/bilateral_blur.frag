@@ -59,5 +59,5 @@ void main() {
             total += w;
         }
     }
-    oValue = sanitize(sum / (total + 1e-4));
+    oValue = sanitize(sum / total);  // total >= kernel[0] > 0: the centre always counts
 }

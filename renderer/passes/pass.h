@@ -69,7 +69,6 @@ struct FrameContext {
     int width, height;
     bool historyValid;   // false on the first frame and after a camera cut
     float time;          // seconds of animation for temporally varying taps
-    glm::vec4 projection;  // persp flag, projScale, near, far
 
     // Draws a full-screen triangle into fbo with a viewport of w x h.
     void drawFullscreen(GLuint program, GLuint fbo, int w, int h) const;

@@ -1,0 +1,296 @@
+// Each pass proven on a scene built for it.
+#include "gl_fixture.h"
+
+#include "renderer/passes/radiosity_gather_pass.h"
+
+#include <glm/gtc/matrix_transform.hpp>
+
+using namespace deepgi;
+using namespace deepgi::test;
+using namespace deepgi::procedural;
+
+namespace {
+
+// Camera at the origin looking down -Z; a plane facing it at z = -2 (|x|,|y| < 0.5), a box with its front face at
+// z = -3 behind it, and a wall at z = -6.
+std::shared_ptr<Scene> layeredScene() {
+    auto s = std::make_shared<Scene>();
+    int m = addMaterial(*s, glm::vec3(0.5f));
+    addQuad(*s, {-0.5f, -0.5f, -2.0f}, {0.5f, -0.5f, -2.0f}, {0.5f, 0.5f, -2.0f}, {-0.5f, 0.5f, -2.0f}, m);
+    addBox(*s, {-1.0f, -1.0f, -4.0f}, {1.0f, 1.0f, -3.0f}, m, false);
+    addQuad(*s, {-20, -20, -6}, {20, -20, -6}, {20, 20, -6}, {-20, 20, -6}, m);
+    addCamera(*s, "cam", {0, 0, 0}, {0, 0, -1}, 60.0f);
+    s->computeBounds();
+    return s;
+}
+
+float centre(const FloatImage& img, int c = 0) { return img.at(img.width / 2, img.height / 2, c); }
+
+void fillTexture(GLuint tex, const glm::vec3& v) { glClearTexImage(tex, 0, GL_RGB, GL_FLOAT, &v.x); }
+
+}  // namespace
+
+// Layer 2 of a box behind a plane has the analytic depth and honours the minimum separation, in both the
+// single-pass predicted mode (still camera) and the two-pass depth-peeling oracle.
+TEST_F(GLTest, DeepGBufferLayer2DepthAndMinimumSeparation) {
+    auto scene = layeredScene();
+    for (int generation : {0, 1}) {
+        for (auto [dz, expected] : {std::pair{0.5f, 3.0f}, std::pair{1.5f, 6.0f}}) {
+            Renderer r;
+            r.setScene(scene);
+            r.resize(64, 48);
+            r.setCamera(selectCamera(*scene, "cam"));
+            Settings s;
+            s.generation = generation;
+            s.minSeparation = dz;
+            for (int i = 0; i < 3; ++i) r.render(s);
+            EXPECT_EQ(r.lastGeometryPasses(), generation == 0 ? 1 : 2);
+            FloatImage d1 = r.readLayer("Depth 1"), d2 = r.readLayer("Depth 2");
+            EXPECT_NEAR(centre(d1), 2.0f, 2e-3f) << "generation " << generation;
+            EXPECT_NEAR(centre(d2), expected, 2e-3f * expected) << "generation " << generation << " dz " << dz;
+            // Where nothing is in front, layer 1 is the wall and layer 2 is empty (far plane).
+            EXPECT_NEAR(d1.at(2, 2, 0), 6.0f, 2e-3f * 6.0f);
+            EXPECT_GE(d2.at(2, 2, 0), r.camera().zfar * 0.999f);
+        }
+    }
+}
+
+// The predicted layer 2 equals the depth-peeled oracle for a still camera.
+TEST_F(GLTest, PredictedLayer2MatchesPeelingForStillCamera) {
+    auto scene = cornellScene();
+    FloatImage depth[2];
+    for (int g : {0, 1}) {
+        Renderer r;
+        r.setScene(scene);
+        r.resize(80, 60);
+        r.setCamera(selectCamera(*scene, "front"));
+        Settings s;
+        s.generation = g;
+        s.minSeparation = 0.2f;
+        for (int i = 0; i < 3; ++i) r.render(s);
+        depth[g] = r.readLayer("Depth 2");
+    }
+    int differ = 0;
+    for (size_t i = 0; i < depth[0].pixels.size(); ++i)
+        if (std::abs(depth[0].pixels[i] - depth[1].pixels[i]) > 1e-3f * depth[1].pixels[i]) ++differ;
+    EXPECT_EQ(differ, 0);
+}
+
+// oct16 normals (RG8_SNORM) round-trip within 1.2 degrees for directions up to 70 degrees from the view axis.
+TEST_F(GLTest, Oct16NormalsRoundTrip) {
+    auto s = std::make_shared<Scene>();
+    int m = addMaterial(*s, glm::vec3(0.5f));
+    struct Tile { glm::vec3 n; int px, py; };
+    std::vector<Tile> tiles;
+    const int grid = 9, cell = 12;
+    // A grid of small flat quads at z = -10, each tilted to its own normal (within 80 degrees of the view).
+    const float fov = glm::radians(40.0f), half = 10.0f * std::tan(fov / 2);
+    for (int j = 0; j < grid; ++j)
+        for (int i = 0; i < grid; ++i) {
+            float a = glm::radians(-70.0f + 140.0f * i / (grid - 1)), b = glm::radians(-70.0f + 140.0f * j / (grid - 1));
+            glm::vec3 c(-half + (i + 0.5f) * 2 * half / grid, -half + (j + 0.5f) * 2 * half / grid, -10.0f);
+            // Tilted by (a, b) away from the direction to the camera, so every tile faces it.
+            const glm::vec3 toCam = glm::normalize(-c);
+            const glm::vec3 t1 = glm::normalize(glm::cross(glm::vec3(0, 1, 0), toCam)), t2 = glm::cross(toCam, t1);
+            glm::vec3 n = glm::normalize(toCam * std::cos(a) * std::cos(b) + t1 * std::sin(a) * std::cos(b) + t2 * std::sin(b));
+            glm::vec3 t = glm::normalize(glm::cross(std::abs(n.y) < 0.9f ? glm::vec3(0, 1, 0) : glm::vec3(1, 0, 0), n));
+            glm::vec3 u = glm::cross(n, t);
+            float e = 0.45f * half / grid * 2;
+            addQuad(*s, c - t * e - u * e, c + t * e - u * e, c + t * e + u * e, c - t * e + u * e, m);
+            tiles.push_back({n, i * cell + cell / 2, (grid - 1 - j) * cell + cell / 2});
+        }
+    addCamera(*s, "cam", {0, 0, 0}, {0, 0, -1}, 40.0f);
+    s->computeBounds();
+    Renderer r;
+    r.setScene(s);
+    r.resize(grid * cell, grid * cell);
+    r.setCamera(selectCamera(*s, "cam"));
+    r.render(Settings{});
+    FloatImage nimg = r.readLayer("Normal 1");
+    float worst = 0.0f;
+    for (const auto& t : tiles) {
+        glm::vec3 got(nimg.at(t.px, t.py, 0), nimg.at(t.px, t.py, 1), nimg.at(t.px, t.py, 2));
+        float err = glm::degrees(std::acos(std::min(1.0f, glm::dot(got, t.n))));
+        if (err > 1.2f) std::printf("tile at %d,%d: expected %g %g %g got %g %g %g\n", t.px, t.py, t.n.x, t.n.y, t.n.z, got.x, got.y, got.z);
+        worst = std::max(worst, err);
+    }
+    EXPECT_LT(worst, 1.2f);
+    EXPECT_GT(worst, 0.0f);  // 8 bits per component do quantise
+}
+
+// With a still camera, Reprojected Radiance is last frame's Output Radiance.
+TEST_F(GLTest, ReprojectionWithStillCameraReturnsLastOutput) {
+    auto scene = cornellScene();
+    Renderer r;
+    r.setScene(scene);
+    r.resize(96, 72);
+    r.setCamera(selectCamera(*scene, "front"));
+    Settings s;
+    s.radius = 1.5f;
+    for (int i = 0; i < 4; ++i) r.render(s);
+    FloatImage last = r.readLayer("Output Radiance");
+    r.render(s);
+    FloatImage reproj = r.readLayer("Reprojected Radiance");
+    FloatImage depth = r.readLayer("Depth 1");
+    int checked = 0, bad = 0;
+    for (int y = 0; y < last.height; ++y)
+        for (int x = 0; x < last.width; ++x) {
+            if (depth.at(x, y, 0) >= selectCamera(*scene, "front").zfar * 0.99f) continue;
+            for (int c = 0; c < 3; ++c) {
+                float a = last.at(x, y, c), b = reproj.at(x, y, c);
+                ++checked;
+                // One R11F_G11F_B10F step: 6-bit mantissa for R and G, 5-bit for B.
+                const float step = std::max(std::abs(a), std::abs(b)) * (c == 2 ? 1.0f / 32.0f : 1.0f / 64.0f);
+                if (std::abs(a - b) > step + 2e-6f) {  // + one step of the denormal range (2^-20, 2^-19)
+                    if (bad < 5) std::printf("reprojection mismatch at %d,%d c%d: last %g reprojected %g\n", x, y, c, a, b);
+                    ++bad;
+                }
+            }
+        }
+    EXPECT_GT(checked, 1000);
+    EXPECT_EQ(bad, 0);
+    // After a camera cut nothing is reprojected (defined zeros, not garbage).
+    r.resetHistory();
+    r.render(s);
+    FloatImage cut = r.readLayer("Reprojected Radiance");
+    EXPECT_EQ(meanChannel(cut, 0) + meanChannel(cut, 1) + meanChannel(cut, 2), 0.0);
+}
+
+// The gather on a floor under a uniformly lit ceiling (radiance B, height H, gather radius r). Analytic irradiance
+// of the in-radius disk: E = pi B (1 - H^2/r^2). The paper's estimator 2pi/M_used * sum(B cos) over screen-space
+// taps over-weights steep directions, a known bias of normalising by accepted taps (technique.md 6.1): we state
+// the tolerance as [-15%, +60%] of the analytic value (measured: +55% at r = 2H), and require exact linearity in B.
+TEST_F(GLTest, GatherUnderUniformlyLitCeilingMatchesAnalyticIrradiance) {
+    auto s = std::make_shared<Scene>();
+    const glm::vec3 B(0.6f, 0.3f, 0.1f);
+    int floorM = addMaterial(*s, glm::vec3(0.0f));
+    int ceilM = addMaterial(*s, glm::vec3(0.0f), B, false);
+    addFloor(*s, 50.0f, 0.0f, floorM);
+    addQuad(*s, {-50, 1, -50}, {50, 1, -50}, {50, 1, 50}, {-50, 1, 50}, ceilM);  // facing down
+    addCamera(*s, "cam", {0, 0.5f, 0}, {0, 0.5f, -1}, 90.0f);
+    s->computeBounds();
+    s->lights.clear();
+    Renderer r;
+    r.setScene(s);
+    r.resize(128, 128);
+    r.setCamera(selectCamera(*s, "cam"));
+    Settings st;
+    st.sunIntensity = 0.0f;
+    st.radius = 2.0f;
+    st.numSamples = 30;
+    st.minMip = 0;
+    st.blur = false;
+    st.temporal = false;
+    st.damping = 1.0f;
+    st.varyTaps = false;
+    r.render(st);
+    FloatImage E = r.readLayer("Output Radiance");
+    // Floor pixels in the lower middle of the image (distance 1..4 from the camera).
+    double sum[3] = {0, 0, 0};
+    int n = 0;
+    for (int y = 80; y < 120; ++y)
+        for (int x = 40; x < 88; ++x, ++n)
+            for (int c = 0; c < 3; ++c) sum[c] += E.at(x, y, c);
+    for (int c = 0; c < 3; ++c) sum[c] /= n;
+    const double H = 1.0, rr = st.radius;
+    const double disk = M_PI * (rr * rr - H * H) / (rr * rr);  // irradiance / B of the in-radius disk
+    for (int c = 0; c < 3; ++c) {
+        EXPECT_GT(sum[c], 0.85 * disk * B[c]) << c;
+        EXPECT_LT(sum[c], 1.60 * disk * B[c]) << c;
+    }
+    // Colour ratios are preserved exactly up to R11G11B10 rounding (the estimator is linear in B).
+    EXPECT_NEAR(sum[1] / sum[0], B[1] / B[0], 0.03);
+    EXPECT_NEAR(sum[2] / sum[0], B[2] / B[0], 0.03);
+    std::printf("gather under ceiling: E/B = %.3f (in-radius disk analytic %.3f, full hemisphere %.3f)\n",
+                sum[0] / B[0], disk, M_PI);
+}
+
+// The bilateral blur preserves a constant field.
+TEST_F(GLTest, BilateralBlurPreservesConstant) {
+    auto scene = cornellScene();
+    Renderer r;
+    r.setScene(scene);
+    r.resize(96, 72);
+    r.setCamera(selectCamera(*scene, "front"));
+    Settings s;
+    r.render(s);
+    const glm::vec3 k(0.25f, 0.5f, 1.0f);
+    fillTexture(r.textures().id("Output Radiance"), k);
+    r.executePass("Bilateral blur", s);
+    FloatImage out = r.readLayer("Output Radiance");
+    for (int y = 0; y < out.height; ++y)
+        for (int x = 0; x < out.width; ++x)
+            for (int c = 0; c < 3; ++c) ASSERT_NEAR(out.at(x, y, c), k[c], 1e-6f) << x << "," << y;
+}
+
+// The temporal blend follows E = a*w*E_reprojected + (1 - a*w)*E_current, w = 1 for a still camera.
+TEST_F(GLTest, TemporalBlendFollowsFormula) {
+    auto scene = cornellScene();
+    Renderer r;
+    r.setScene(scene);
+    r.resize(96, 72);
+    r.setCamera(selectCamera(*scene, "front"));
+    Settings s;
+    s.hysteresis = 0.75f;
+    r.render(s);
+    r.render(s);
+    const glm::vec3 cur(1.0f, 2.0f, 4.0f), prev(3.0f, 0.5f, 8.0f);
+    fillTexture(r.textures().id("Output Radiance"), cur);
+    fillTexture(r.textures().id("Reprojected Radiance"), prev);
+    r.executePass("Temporal blend", s);
+    FloatImage out = r.readLayer("Output Radiance");
+    FloatImage depth = r.readLayer("Depth 1");
+    glm::vec3 expect = 0.75f * prev + 0.25f * cur;
+    int checked = 0;
+    for (int y = 0; y < out.height; ++y)
+        for (int x = 0; x < out.width; ++x) {
+            if (depth.at(x, y, 0) >= r.camera().zfar * 0.99f) continue;
+            ++checked;
+            for (int c = 0; c < 3; ++c) ASSERT_NEAR(out.at(x, y, c), expect[c], 0.02f * expect[c]) << x << "," << y;
+        }
+    EXPECT_GT(checked, 1000);
+    // Without history the current value passes through.
+    r.resetHistory();
+    fillTexture(r.textures().id("Output Radiance"), cur);
+    r.executePass("Temporal blend", s);
+    FloatImage fresh = r.readLayer("Output Radiance");
+    EXPECT_NEAR(fresh.at(48, 36, 1), cur[1], 0.02f);
+}
+
+// The memory report of the seed layout: 176 bits per pixel of G-buffer, 128 of radiosity.
+TEST_F(GLTest, BufferReportGivesSeedLayout) {
+    auto scene = cornellScene();
+    Renderer r;
+    r.setScene(scene);
+    r.resize(320, 180);
+    r.prepare(Settings{});
+    MemoryReport m = r.textures().memoryReport();
+    EXPECT_EQ(m.gbufferBitsPerPixel, 176);
+    EXPECT_EQ(m.radiosityBitsPerPixel, 128);
+    EXPECT_EQ(m.gbufferBytes, uint64_t(320) * 180 * 176 / 8);
+    EXPECT_EQ(m.radiosityBytes, uint64_t(320) * 180 * 128 / 8);
+    // Extras are listed on their own lines: mips, shadow map, final images.
+    bool mips = false, shadow = false;
+    for (const auto& l : m.lines) {
+        if (l.name.find("mips") != std::string::npos) { mips = true; EXPECT_EQ(l.group, "extra"); }
+        if (l.name == "Shadow Map 1") { shadow = true; EXPECT_EQ(l.group, "extra"); }
+    }
+    EXPECT_TRUE(mips);
+    EXPECT_TRUE(shadow);
+    // temporal_first adds exactly one 32-bit history buffer, counted as extra.
+    Settings tf;
+    tf.filterOrder = 1;
+    r.prepare(tf);
+    MemoryReport m2 = r.textures().memoryReport();
+    EXPECT_EQ(m2.radiosityBitsPerPixel, 128);
+    EXPECT_EQ(m2.extraBitsPerPixel, m.extraBitsPerPixel + 32);
+}
+
+TEST(SpiralTurns, MatchesPaperTable) {
+    EXPECT_EQ(spiralTurns(13), 5);
+    EXPECT_EQ(spiralTurns(14), 3);
+    EXPECT_EQ(spiralTurns(19), 7);
+    EXPECT_EQ(spiralTurns(30), 11);
+    EXPECT_EQ(spiralTurns(50), 19);
+    EXPECT_EQ(spiralTurns(150), 5779);
+}
