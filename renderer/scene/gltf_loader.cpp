@@ -99,7 +99,7 @@ struct FsContext {
 
 // Returns true when `full` (as joined by tinygltf: baseDir + "/" + uri) names a file inside baseDir.
 bool insideBase(const std::string& full, FsContext* ctx, bool record) {
-    const std::string prefix = ctx->baseDir + "/";
+    const std::string prefix = ctx->baseDir == "/" ? ctx->baseDir : ctx->baseDir + "/";
     if (full.compare(0, prefix.size(), prefix) != 0) return false;  // e.g. tinygltf's "./uri" fallback
     const std::string rel = full.substr(prefix.size());
     bool bad = rel.empty() || rel[0] == '/' || rel[0] == '\\';
@@ -707,6 +707,11 @@ private:
             }
             if (!(c.znear > 0.0f)) c.znear = 0.05f;
         }
+        if (!finite3(glm::vec3(world[0])) || !finite3(glm::vec3(world[1])) || !finite3(glm::vec3(world[2])) ||
+            !finite3(glm::vec3(world[3]))) {
+            warn("camera '" + c.name + "': non-finite node transform, skipped");
+            return;
+        }
         glm::mat4 m = world;
         for (int i = 0; i < 3; ++i) {
             const float len = glm::length(glm::vec3(m[i]));
@@ -735,6 +740,10 @@ private:
         l.intensity = std::max(0.0f, finiteOr(gl.intensity, 1.0f));
         l.range = std::max(0.0f, finiteOr(gl.range, 0.0f));
         l.position = glm::vec3(world * glm::vec4(0.0f, 0.0f, 0.0f, 1.0f));
+        if (!finite3(l.position)) {
+            warn("light '" + l.name + "': non-finite node transform, skipped");
+            return;
+        }
         glm::vec3 d = glm::vec3(world * glm::vec4(0.0f, 0.0f, -1.0f, 0.0f));
         const float len = glm::length(d);
         l.direction = (len > 0.0f && std::isfinite(len)) ? d / len : glm::vec3(0.0f, 0.0f, -1.0f);
