@@ -826,3 +826,26 @@ TEST(GltfRegress, FuzzSeedCorpusLoads) {
     }
     EXPECT_GE(files, 4);
 }
+
+// Found by review, reproduced before the fix: tinygltf 2.7 converts extras/extensions recursively and overflowed
+// the stack on deeply nested JSON (a regression input also lives in tests/data/gltf/regress/).
+TEST_F(GltfLoader, DeeplyNestedJsonIsAnError) {
+    const int depth = 100000;
+    const std::string arrays = std::string(depth, '[') + std::string(depth, ']');
+    writeFile(dir / "deep.gltf", "{\"asset\":{\"version\":\"2.0\"},\"extras\":" + arrays + "}");
+    expectError(dir / "deep.gltf", "nesting");
+    std::string objs;
+    for (int i = 0; i < depth; ++i) objs += "{\"a\":";
+    objs += "1" + std::string(depth, '}');
+    Builder b;
+    b.node({{"name", "n"}});
+    b.j["nodes"][0]["extras"] = 0;
+    std::string js = b.j.dump();
+    js.replace(js.find("\"extras\":0"), 10, "\"extras\":" + objs);
+    writeFile(dir / "deep_obj.gltf", js);
+    expectError(dir / "deep_obj.gltf", "nesting");
+    // strings containing brackets do not count
+    Builder ok;
+    ok.j["extras"] = {{"text", std::string(1000, '[') + "\\\"{"}};
+    EXPECT_NO_THROW(loadGltf(ok.writeGltf(dir, "brackets.gltf").string()));
+}

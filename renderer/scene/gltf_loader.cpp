@@ -236,13 +236,40 @@ private:
         }
     }
 
+    // tinygltf converts "extras"/"extensions" JSON recursively, so deeply nested JSON would overflow the stack.
+    void checkJsonDepth(const unsigned char* p, size_t n) const {
+        constexpr int kMaxDepth = 256;
+        int depth = 0;
+        bool inString = false, escaped = false;
+        for (size_t i = 0; i < n; ++i) {
+            const unsigned char c = p[i];
+            if (inString) {
+                if (escaped) escaped = false;
+                else if (c == '\\') escaped = true;
+                else if (c == '"') inString = false;
+            } else if (c == '"') {
+                inString = true;
+            } else if (c == '{' || c == '[') {
+                if (++depth > kMaxDepth)
+                    fail("invalid JSON: nesting deeper than " + std::to_string(kMaxDepth) + " levels");
+            } else if (c == '}' || c == ']') {
+                --depth;
+            }
+        }
+    }
+
     void parse() {
         std::vector<unsigned char> data = readMainFile();
         std::string ext = fs::path(path_).extension().string();
         std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
         const bool binary = ext == ".glb" || (data.size() >= 4 && std::memcmp(data.data(), "glTF", 4) == 0);
-        if (binary) checkGlb(data);
-        else if (data.empty()) fail("empty file (invalid JSON)");
+        if (binary) {
+            checkGlb(data);
+            checkJsonDepth(data.data() + 20, le32(&data[12]));
+        } else {
+            if (data.empty()) fail("empty file (invalid JSON)");
+            checkJsonDepth(data.data(), data.size());
+        }
 
         FsContext ctx;
         std::error_code ec;
