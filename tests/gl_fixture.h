@@ -37,6 +37,15 @@ inline double meanChannel(const FloatImage& img, int c, int x0 = 0, int y0 = 0, 
 // Writes img to $DEEPGI_TEST_OUT/<name>.exr when that variable is set (for looking at test images).
 void dumpIfRequested(const std::string& name, const FloatImage& img);
 
+// A renderer over `scene` at w x h looking through the scene's camera `camera`.
+inline std::unique_ptr<Renderer> rendererFor(std::shared_ptr<Scene> scene, int w, int h, const std::string& camera) {
+    auto r = std::make_unique<Renderer>();
+    r->setScene(scene);
+    r->resize(w, h);
+    r->setCamera(selectCamera(*scene, camera));
+    return r;
+}
+
 // A 2x2x2 m room (inward walls: red -X, green +X, white otherwise) with a square hole in the ceiling, a sun
 // shining through it and a camera looking in from the front wall.
 std::shared_ptr<Scene> cornellScene();

@@ -14,10 +14,8 @@ TEST_F(GLTest, EmissiveSurfaceIsSeenAndLightsTheFloor) {
     addQuad(*s, {-1.0f, 0.0f, -1.0f}, {1.0f, 0.0f, -1.0f}, {1.0f, 1.0f, -1.0f}, {-1.0f, 1.0f, -1.0f}, lamp);  // faces +Z
     addCamera(*s, "cam", {0.0f, 1.5f, 2.5f}, {0.0f, 0.3f, -1.0f}, 60.0f);
     s->computeBounds();
-    Renderer r;
-    r.setScene(s);
-    r.resize(96, 72);
-    r.setCamera(selectCamera(*s, "cam"));
+    auto renderer = rendererFor(s, 96, 72, "cam");
+    Renderer& r = *renderer;
     Settings st;
     st.sunIntensity = 0.0f;  // the scene has no lights: the default sun is off
     for (int i = 0; i < 6; ++i) r.render(st);
@@ -55,10 +53,8 @@ TEST_F(GLTest, AlphaMaskedMaterialIsCutOutAndCastsNoShadow) {
         addSun(*s, glm::vec3(0.0f, -1.0f, 0.0f), 3.0f);
         addCamera(*s, "cam", {0.0f, 0.5f, 3.0f}, {0.0f, 0.0f, 0.0f}, 60.0f);
         s->computeBounds();
-        Renderer r;
-        r.setScene(s);
-        r.resize(64, 48);
-        r.setCamera(selectCamera(*s, "cam"));
+        auto renderer = rendererFor(s, 64, 48, "cam");
+        Renderer& r = *renderer;
         Settings st;
         st.indirect = false;
         r.render(st);

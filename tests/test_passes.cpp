@@ -36,10 +36,8 @@ TEST_F(GLTest, DeepGBufferLayer2DepthAndMinimumSeparation) {
     auto scene = layeredScene();
     for (int generation : {0, 1}) {
         for (auto [dz, expected] : {std::pair{0.5f, 3.0f}, std::pair{1.5f, 6.0f}}) {
-            Renderer r;
-            r.setScene(scene);
-            r.resize(64, 48);
-            r.setCamera(selectCamera(*scene, "cam"));
+            auto renderer = rendererFor(scene, 64, 48, "cam");
+            Renderer& r = *renderer;
             Settings s;
             s.generation = generation;
             s.minSeparation = dz;
@@ -60,10 +58,8 @@ TEST_F(GLTest, PredictedLayer2MatchesPeelingForStillCamera) {
     auto scene = cornellScene();
     FloatImage depth[2];
     for (int g : {0, 1}) {
-        Renderer r;
-        r.setScene(scene);
-        r.resize(80, 60);
-        r.setCamera(selectCamera(*scene, "front"));
+        auto renderer = rendererFor(scene, 80, 60, "front");
+        Renderer& r = *renderer;
         Settings s;
         s.generation = g;
         s.minSeparation = 0.2f;
@@ -121,10 +117,8 @@ TEST_F(GLTest, Oct16NormalsRoundTrip) {
 // With a still camera, Reprojected Radiance is last frame's Output Radiance.
 TEST_F(GLTest, ReprojectionWithStillCameraReturnsLastOutput) {
     auto scene = cornellScene();
-    Renderer r;
-    r.setScene(scene);
-    r.resize(96, 72);
-    r.setCamera(selectCamera(*scene, "front"));
+    auto renderer = rendererFor(scene, 96, 72, "front");
+    Renderer& r = *renderer;
     Settings s;
     s.radius = 1.5f;
     for (int i = 0; i < 4; ++i) r.render(s);
@@ -170,10 +164,8 @@ TEST_F(GLTest, GatherUnderUniformlyLitCeilingMatchesAnalyticIrradiance) {
     addCamera(*s, "cam", {0, 0.5f, 0}, {0, 0.5f, -1}, 90.0f);
     s->computeBounds();
     s->lights.clear();
-    Renderer r;
-    r.setScene(s);
-    r.resize(128, 128);
-    r.setCamera(selectCamera(*s, "cam"));
+    auto renderer = rendererFor(s, 128, 128, "cam");
+    Renderer& r = *renderer;
     Settings st;
     st.sunIntensity = 0.0f;
     st.radius = 2.0f;
@@ -208,10 +200,8 @@ TEST_F(GLTest, GatherUnderUniformlyLitCeilingMatchesAnalyticIrradiance) {
 // The bilateral blur preserves a constant field.
 TEST_F(GLTest, BilateralBlurPreservesConstant) {
     auto scene = cornellScene();
-    Renderer r;
-    r.setScene(scene);
-    r.resize(96, 72);
-    r.setCamera(selectCamera(*scene, "front"));
+    auto renderer = rendererFor(scene, 96, 72, "front");
+    Renderer& r = *renderer;
     Settings s;
     r.render(s);
     const glm::vec3 k(0.25f, 0.5f, 1.0f);
@@ -226,10 +216,8 @@ TEST_F(GLTest, BilateralBlurPreservesConstant) {
 // The temporal blend follows E = a*w*E_reprojected + (1 - a*w)*E_current, w = 1 for a still camera.
 TEST_F(GLTest, TemporalBlendFollowsFormula) {
     auto scene = cornellScene();
-    Renderer r;
-    r.setScene(scene);
-    r.resize(96, 72);
-    r.setCamera(selectCamera(*scene, "front"));
+    auto renderer = rendererFor(scene, 96, 72, "front");
+    Renderer& r = *renderer;
     Settings s;
     s.hysteresis = 0.75f;
     r.render(s);

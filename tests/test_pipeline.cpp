@@ -7,10 +7,8 @@ using namespace deepgi::test;
 TEST_F(GLTest, PipelineRendersFiniteImageWithColourBleeding) {
     auto scene = cornellScene();
     gl::installDebugOutput(false);
-    Renderer r;
-    r.setScene(scene);
-    r.resize(160, 120);
-    r.setCamera(selectCamera(*scene, "front"));
+    auto renderer = rendererFor(scene, 160, 120, "front");
+    Renderer& r = *renderer;
     Settings s;
     s.radius = 1.5f;
     s.minSeparation = 0.2f;
