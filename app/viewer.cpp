@@ -114,6 +114,7 @@ private:
     ui::InspectorState inspector_;
     bool captureBuffers_ = false;
     std::string lastCapture_;
+    std::string selectTab_;  // sidebar tab to bring to front (script "panel")
     double statusTime_ = 0.0;
 
     // Layout (window units) of the previous frame.
@@ -133,6 +134,7 @@ private:
     std::vector<ScriptAction> script_;
     size_t pc_ = 0;
     int waitFrames_ = 0;
+    double sleepUntil_ = 0.0;
     std::string pendingShot_;
     bool scriptFailed_ = false;
     bool quit_ = false;
@@ -273,6 +275,8 @@ bool Viewer::init() {
     st.FramePadding = ImVec2(5.0f, 3.0f);
     st.ItemSpacing = ImVec2(6.0f, 4.0f);
     st.WindowBorderSize = 1.0f;
+    // A script drives the viewport itself; the real pointer (Xvfb's sits mid-screen) must not hover the panels.
+    if (!script_.empty()) io.ConfigFlags |= ImGuiConfigFlags_NoMouse;
     ImGui_ImplGlfw_InitForOpenGL(window_, true);
     ImGui_ImplOpenGL3_Init("#version 450 core");
     imguiReady_ = true;
@@ -539,6 +543,7 @@ void Viewer::writeWindowPng(const std::string& path) {
 void Viewer::runScript() {
     if (script_.empty() && opt_.scriptPath.empty()) return;
     if (waitFrames_ > 0) { --waitFrames_; return; }
+    if (nowSeconds() < sleepUntil_) return;
     while (pc_ < script_.size()) {
         const ScriptAction& a = script_[pc_++];
         const std::string where = opt_.scriptPath + ":" + std::to_string(a.line) + ": ";
@@ -553,6 +558,7 @@ void Viewer::runScript() {
         };
         try {
             if (a.verb == "wait") { waitFrames_ = std::max(0, std::stoi(a.args[0]) - 1); return; }
+            if (a.verb == "sleep") { sleepUntil_ = nowSeconds() + std::stod(a.args[0]); return; }
             if (a.verb == "key") {
                 const int k = glfwKeyFromName(a.args[0]);
                 onKey(k, GLFW_PRESS, mods(1), true);
@@ -582,6 +588,11 @@ void Viewer::runScript() {
             } else if (a.verb == "screenshot") {
                 pendingShot_ = a.args[0];
                 return;  // taken at the end of this frame
+            } else if (a.verb == "panel") {
+                if (a.args[0] != "settings" && a.args[0] != "profiler" && a.args[0] != "view")
+                    throw std::runtime_error("panel must be settings, profiler or view");
+                view_.sidebar = true;
+                selectTab_ = a.args[0];
             } else if (a.verb == "capture") {
                 capture();
             } else if (a.verb == "shell") {
@@ -742,8 +753,11 @@ void Viewer::drawSidebar(float x0, float height) {
                                    ImGuiWindowFlags_NoSavedSettings | ImGuiWindowFlags_NoTitleBar;
     ImGui::PushStyleVar(ImGuiStyleVar_WindowRounding, 0.0f);
     if (ImGui::Begin("Sidebar", nullptr, flags)) {
+        auto tabFlags = [&](const char* name) {
+            return selectTab_ == name ? ImGuiTabItemFlags_SetSelected : ImGuiTabItemFlags_None;
+        };
         if (ImGui::BeginTabBar("tabs")) {
-            if (ImGui::BeginTabItem("Settings")) {
+            if (ImGui::BeginTabItem("Settings", nullptr, tabFlags("settings"))) {
                 ui::SettingsActions a = ui::drawSettingsPanel(settings_, settingsPanel_);
                 if (a.resetHistory) renderer_->resetHistory();
                 if (a.convergeFrames > 0) {
@@ -756,11 +770,11 @@ void Viewer::drawSidebar(float x0, float height) {
                 }
                 ImGui::EndTabItem();
             }
-            if (ImGui::BeginTabItem("Profiler")) {
+            if (ImGui::BeginTabItem("Profiler", nullptr, tabFlags("profiler"))) {
                 ui::drawProfilerPanel(profiler_, renderer_->textures().memoryReport(), renderer_->width(), renderer_->height());
                 ImGui::EndTabItem();
             }
-            if (ImGui::BeginTabItem("View")) {
+            if (ImGui::BeginTabItem("View", nullptr, tabFlags("view"))) {
                 ImGui::TextDisabled("Scene");
                 ImGui::TextWrapped("%s", scene_->sourcePath.c_str());
                 ImGui::Text("%zu triangles, %zu lights, %zu cameras", scene_->triangleCount(), scene_->lights.size(), scene_->cameras.size());
@@ -797,6 +811,7 @@ void Viewer::drawSidebar(float x0, float height) {
                 ImGui::EndTabItem();
             }
             ImGui::EndTabBar();
+            selectTab_.clear();
         }
     }
     ImGui::End();

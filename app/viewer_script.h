@@ -1,6 +1,7 @@
 #pragma once
 // `deepgi view --script FILE`: timed actions for tests and demos, one per line ('#' starts a comment).
 //   wait N                      let N frames render
+//   sleep S                     keep rendering for S seconds (e.g. past the twice-a-second shader poll)
 //   key NAME [shift] [ctrl] [alt]   press and release a key (GLFW names: KP_1, F12, HOME, N, GRAVE_ACCENT, ...)
 //   drag BUTTON X0 Y0 X1 Y1 [shift] [ctrl] [alt]   BUTTON = left|middle|right, window coordinates
 //   scroll N                    wheel notches at the viewport centre (> 0 zooms in)
@@ -9,6 +10,7 @@
 //   inspect "BUFFER"            open the inspector on a buffer
 //   camera "NAME"               switch to a glTF camera
 //   screenshot PATH             PNG of the whole window (back buffer, before the swap) after this frame
+//   panel settings|profiler|view   bring a sidebar tab to the front (shows the sidebar)
 //   capture                     what F12 does (final PNG, buffers if chosen, settings.json)
 //   shell COMMAND...            run a shell command (e.g. edit a shader), waits for it
 //   dump_errors PATH            write the current shader errors, one per line (empty file if none)
