@@ -4,6 +4,7 @@
 #include "app/viewer.h"
 
 #include "app/camera_controller.h"
+#include "app/options.h"
 #include "app/viewer_script.h"
 #include "renderer/core/image_io.h"
 #include "renderer/passes/buffer_view_pass.h"
@@ -593,6 +594,10 @@ void Viewer::runScript() {
                     throw std::runtime_error("panel must be settings, profiler or view");
                 view_.sidebar = true;
                 selectTab_ = a.args[0];
+            } else if (a.verb == "resize") {
+                int w = 0, h = 0;
+                parseSize(a.args[0], w, h);
+                glfwSetWindowSize(window_, w, h);
             } else if (a.verb == "capture") {
                 capture();
             } else if (a.verb == "shell") {
@@ -647,7 +652,7 @@ void Viewer::frame() {
         return;
     }
     const float scaleX = float(fbw) / float(ww), scaleY = float(fbh) / float(wh);
-    const float sidebarW = view_.sidebar ? std::clamp(float(ww) * 0.3f, 250.0f, 380.0f) : 0.0f;
+    const float sidebarW = view_.sidebar ? std::clamp(float(ww) * 0.3f, 280.0f, 420.0f) : 0.0f;
     vpX0_ = 0.0f;
     vpX1_ = std::max(float(ww) - sidebarW, 1.0f);
     vpY0_ = headerH_;

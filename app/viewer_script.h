@@ -11,6 +11,7 @@
 //   camera "NAME"               switch to a glTF camera
 //   screenshot PATH             PNG of the whole window (back buffer, before the swap) after this frame
 //   panel settings|profiler|view   bring a sidebar tab to the front (shows the sidebar)
+//   resize WxH                  resize the window (window units)
 //   capture                     what F12 does (final PNG, buffers if chosen, settings.json)
 //   shell COMMAND...            run a shell command (e.g. edit a shader), waits for it
 //   dump_errors PATH            write the current shader errors, one per line (empty file if none)

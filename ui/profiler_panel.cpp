@@ -48,9 +48,10 @@ void ProfilerState::record(const std::vector<PassTiming>& timings, double cpuMs)
 
 void drawProfilerPanel(const ProfilerState& p, const MemoryReport& mem, int width, int height) {
     const float frame = mean(p.frameMs, 10), cpu = mean(p.cpuFrameMs, 10);
-    ImGui::Text("%d x %d   renderer %.1f ms   frame %.1f ms (%.1f fps)", width, height, frame, cpu,
+    ImGui::Text("%d x %d: passes %.1f ms, frame %.1f ms (%.1f fps)", width, height, frame, cpu,
                 cpu > 0.0f ? 1000.0f / cpu : 0.0f);
-    ImGui::TextDisabled("Wall clock with glFinish around each pass (llvmpipe timer queries miss vertex work).");
+    ImGui::TextDisabled("wall clock, glFinish around each pass");
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("llvmpipe's GL timer queries miss vertex work, so CPU wall-clock time is shown");
     if (!p.frameMs.empty()) {
         char overlay[64];
         std::snprintf(overlay, sizeof(overlay), "renderer %.1f ms", p.frameMs.back());
@@ -58,8 +59,8 @@ void drawProfilerPanel(const ProfilerState& p, const MemoryReport& mem, int widt
                          0.0f, FLT_MAX, ImVec2(-1.0f, 60.0f));
     }
     if (ImGui::BeginTable("passes", 3, ImGuiTableFlags_RowBg | ImGuiTableFlags_BordersInnerH | ImGuiTableFlags_SizingStretchProp)) {
-        ImGui::TableSetupColumn("pass", ImGuiTableColumnFlags_WidthStretch, 1.2f);
-        ImGui::TableSetupColumn("ms (avg 10)", ImGuiTableColumnFlags_WidthFixed, 80.0f);
+        ImGui::TableSetupColumn("pass", ImGuiTableColumnFlags_WidthStretch, 2.2f);
+        ImGui::TableSetupColumn("ms", ImGuiTableColumnFlags_WidthFixed, 55.0f);
         ImGui::TableSetupColumn("history", ImGuiTableColumnFlags_WidthStretch, 1.0f);
         ImGui::TableHeadersRow();
         for (const auto& name : p.passOrder) {
@@ -68,7 +69,7 @@ void drawProfilerPanel(const ProfilerState& p, const MemoryReport& mem, int widt
             ImGui::TableNextColumn();
             ImGui::TextUnformatted(name.c_str());
             ImGui::TableNextColumn();
-            ImGui::Text("%8.2f", mean(d, 10));
+            ImGui::Text("%7.2f", mean(d, 10));
             ImGui::TableNextColumn();
             ImGui::PushID(name.c_str());
             ImGui::PlotLines("##h", getter, const_cast<std::deque<float>*>(&d), int(d.size()), 0, nullptr, 0.0f, FLT_MAX,
@@ -83,10 +84,10 @@ void drawProfilerPanel(const ProfilerState& p, const MemoryReport& mem, int widt
                         bytesText(mem.gbufferBytes).c_str(), mem.radiosityBitsPerPixel, bytesText(mem.radiosityBytes).c_str(),
                         bytesText(mem.extraBytes).c_str());
     if (ImGui::BeginTable("memory", 4, ImGuiTableFlags_RowBg | ImGuiTableFlags_BordersInnerH | ImGuiTableFlags_SizingStretchProp)) {
-        ImGui::TableSetupColumn("buffer", ImGuiTableColumnFlags_WidthStretch, 1.4f);
-        ImGui::TableSetupColumn("format", ImGuiTableColumnFlags_WidthStretch, 1.0f);
-        ImGui::TableSetupColumn("bits/px", ImGuiTableColumnFlags_WidthFixed, 50.0f);
-        ImGui::TableSetupColumn("size", ImGuiTableColumnFlags_WidthFixed, 75.0f);
+        ImGui::TableSetupColumn("buffer", ImGuiTableColumnFlags_WidthStretch, 1.5f);
+        ImGui::TableSetupColumn("format", ImGuiTableColumnFlags_WidthStretch, 1.3f);
+        ImGui::TableSetupColumn("bpp", ImGuiTableColumnFlags_WidthFixed, 28.0f);
+        ImGui::TableSetupColumn("size", ImGuiTableColumnFlags_WidthFixed, 72.0f);
         ImGui::TableHeadersRow();
         for (const auto& l : mem.lines) {
             ImGui::TableNextRow();
