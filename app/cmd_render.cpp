@@ -18,6 +18,7 @@ CommandRegistrar registrar("render", "Render a glTF scene headless (OSMesa) to a
     sub.add_option("--camera", job->camera, "glTF camera name (default: the scene's first, else a framing camera)");
     sub.add_option("--buffers", job->buffers, "Buffers to dump as EXR: all, or comma-separated layer names (see `deepgi buffers`)");
     sub.add_option("--out", job->outDir, "Output folder")->capture_default_str();
+    sub.add_option("--shaders", job->shaderDir, "Shader folder (default: the source tree's shaders/)");
     settings->add(sub);
     return [job, size, settings]() {
         parseSize(*size, job->width, job->height);

@@ -37,7 +37,9 @@ RenderJobResult runRenderJob(const RenderJob& job) {
 
     gl::HeadlessContext context;
     result.glRenderer = context.renderer();
-    Renderer renderer;
+    RendererOptions options;
+    if (!job.shaderDir.empty()) options.shaderDir = job.shaderDir;
+    Renderer renderer(options);
     renderer.setScene(scene);
     renderer.resize(job.width, job.height);
     renderer.setCamera(camera);

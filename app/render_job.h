@@ -14,6 +14,7 @@ struct RenderJob {
     int frames = 16;
     std::string buffers;  // "", "all" or comma-separated layer names
     std::string outDir = "out/render";
+    std::string shaderDir;  // "" = the source tree's shaders/
     Settings settings;
 };
 
