@@ -582,6 +582,14 @@ void Viewer::runScript() {
                     throw std::runtime_error("no buffer named '" + a.args[0] + "' in the current pipeline");
                 if (a.verb == "show") view_.buffer = a.args[0];
                 else { inspector_.open = true; inspector_.a = a.args[0]; inspector_.zoom = 0.0f; }
+                if (a.verb == "inspect" && a.args.size() > 1) {
+                    if (std::find(names.begin(), names.end(), a.args[1]) == names.end())
+                        throw std::runtime_error("no buffer named '" + a.args[1] + "' for B");
+                    inspector_.b = a.args[1];
+                }
+            } else if (a.verb == "reference") {
+                const std::string err = loadReference(a.args[0]);
+                if (!err.empty()) throw std::runtime_error(err);
             } else if (a.verb == "camera") {
                 auto it = std::find(view_.cameraNames.begin(), view_.cameraNames.end(), a.args[0]);
                 if (it == view_.cameraNames.end()) throw std::runtime_error("no camera named '" + a.args[0] + "'");

@@ -58,7 +58,7 @@ std::vector<ScriptAction> parseViewerScript(const std::string& path) {
     if (!in) throw std::runtime_error("cannot read script " + path);
     static const std::map<std::string, std::pair<int, int>> arity = {
         {"wait", {1, 1}}, {"sleep", {1, 1}}, {"key", {1, 4}}, {"drag", {5, 8}}, {"scroll", {1, 1}}, {"set", {1, 1}}, {"show", {1, 1}},
-        {"inspect", {1, 1}}, {"camera", {1, 1}}, {"screenshot", {1, 1}}, {"capture", {0, 0}}, {"panel", {1, 1}}, {"resize", {1, 1}}, {"shell", {1, 1000}},
+        {"inspect", {1, 2}}, {"reference", {1, 1}}, {"camera", {1, 1}}, {"screenshot", {1, 1}}, {"capture", {0, 0}}, {"panel", {1, 1}}, {"resize", {1, 1}}, {"shell", {1, 1000}},
         {"dump_errors", {1, 1}}, {"reload", {0, 0}}, {"converge", {1, 1}}, {"quit", {0, 0}}};
     std::vector<ScriptAction> actions;
     std::string line;

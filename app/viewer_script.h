@@ -7,7 +7,8 @@
 //   scroll N                    wheel notches at the viewport centre (> 0 zooms in)
 //   set KEY=VALUE               change a setting (see `deepgi settings`)
 //   show "BUFFER"               show a buffer in the viewport ("Final Display" to go back)
-//   inspect "BUFFER"            open the inspector on a buffer
+//   inspect "A" ["B"]           open the inspector on buffer A (and B right of the split)
+//   reference PATH              load a reference EXR; it is then the buffer "Reference (EXR)"
 //   camera "NAME"               switch to a glTF camera
 //   screenshot PATH             PNG of the whole window (back buffer, before the swap) after this frame
 //   panel settings|profiler|view   bring a sidebar tab to the front (shows the sidebar)
