@@ -1,0 +1,28 @@
+#pragma once
+// `deepgi view`: the interactive GLFW + Dear ImGui viewer over the renderer.
+#include "renderer/core/settings.h"
+
+#include <string>
+
+namespace deepgi {
+
+struct ViewerOptions {
+    std::string scenePath;
+    std::string camera;          // glTF camera name ("" = restored view, else the scene's first camera)
+    std::string scriptPath;      // --script: timed actions, exits at the end
+    std::string shaderDir;       // --shaders ("" = the built-in folder)
+    std::string screenshotDir = "screenshots";
+    int width = 1280, height = 720;
+    bool sizeGiven = false;      // --size overrides the restored window size
+    Settings settings;
+    bool settingsGiven = false;  // --preset/--settings/--set override the restored settings
+    bool fresh = false;          // --fresh: ignore (and do not write) the state file
+};
+
+// Returns the process exit code. Prints "deepgi view needs a display; ..." and returns 1 without a display.
+int runViewer(const ViewerOptions& options);
+
+// $XDG_CONFIG_HOME/deepgi/viewer.json, else ~/.config/deepgi/viewer.json.
+std::string viewerStatePath();
+
+}  // namespace deepgi

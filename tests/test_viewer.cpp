@@ -1,0 +1,244 @@
+// deepgi view under Xvfb: scripted input, window screenshots compared by region.
+// Each test writes a script into a temp folder, runs the built binary under xvfb-run and reads the PNGs back.
+#include "renderer/core/image_io.h"
+
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+namespace fs = std::filesystem;
+
+namespace {
+
+const int kW = 480, kH = 270;  // llvmpipe is slow: small windows
+
+struct ViewerRun {
+    int rc = -1;
+    std::string log;
+};
+
+class Viewer : public ::testing::Test {
+protected:
+    void SetUp() override {
+        ASSERT_EQ(std::system("command -v xvfb-run > /dev/null 2>&1"), 0)
+            << "xvfb-run is missing: install xvfb and xauth (tools/install-deps.sh)";
+        const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+        dir_ = fs::temp_directory_path() / ("deepgi_viewer_" + std::string(info->name()) + "_" + std::to_string(::getpid()));
+        fs::remove_all(dir_);
+        fs::create_directories(dir_);
+    }
+    void TearDown() override {
+        if (!HasFailure()) fs::remove_all(dir_);
+        else std::fprintf(stderr, "viewer test files kept in %s\n", dir_.c_str());
+    }
+    std::string path(const std::string& name) const { return (dir_ / name).string(); }
+
+    // Runs `deepgi view` on the Cornell box with the script; extra arguments appended.
+    ViewerRun view(const std::string& script, const std::string& extra = "", bool fresh = true) {
+        std::ofstream(path("script.txt")) << script;
+        const std::string log = path("log.txt");
+        std::ostringstream cmd;
+        cmd << "cd '" << dir_.string() << "' && XDG_CONFIG_HOME='" << path("config") << "' xvfb-run -a -s '-screen 0 1280x720x24' '"
+            << DEEPGI_BINARY << "' view " << (fresh ? "--fresh " : "") << "--size " << kW << "x" << kH << " --script '" << path("script.txt") << "' "
+            << extra << " '" << DEEPGI_ASSET_DIR << "/cornell_box/cornell_box.gltf' > '" << log << "' 2>&1";
+        ViewerRun r;
+        const int status = std::system(cmd.str().c_str());
+        r.rc = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+        std::ifstream in(log);
+        r.log.assign(std::istreambuf_iterator<char>(in), {});
+        return r;
+    }
+    deepgi::FloatImage shot(const std::string& name) {
+        deepgi::FloatImage img = deepgi::readImage(path(name));
+        EXPECT_EQ(img.width, kW);
+        EXPECT_EQ(img.height, kH);
+        return img;
+    }
+    fs::path dir_;
+};
+
+// The viewport with the sidebar hidden, below the header and the info line, above the status line.
+struct Region {
+    int x0 = 0, y0 = 60, x1 = kW, y1 = kH - 30;
+};
+
+double meanAbsDiff(const deepgi::FloatImage& a, const deepgi::FloatImage& b, Region r = {}) {
+    double sum = 0.0;
+    size_t n = 0;
+    for (int y = r.y0; y < r.y1; ++y)
+        for (int x = r.x0; x < r.x1; ++x)
+            for (int c = 0; c < 3; ++c, ++n) sum += std::abs(a.at(x, y, c) - b.at(x, y, c));
+    return n ? sum / double(n) : 0.0;
+}
+
+double meanChannel(const deepgi::FloatImage& a, int c, Region r = {}) {
+    double sum = 0.0;
+    size_t n = 0;
+    for (int y = r.y0; y < r.y1; ++y)
+        for (int x = r.x0; x < r.x1; ++x, ++n) sum += a.at(x, y, c);
+    return n ? sum / double(n) : 0.0;
+}
+
+// Fraction of the region's pixels within tol (per channel) of an 8-bit-normalised colour.
+double fractionNear(const deepgi::FloatImage& a, float r_, float g, float b, float tol, Region r = {}) {
+    size_t hit = 0, n = 0;
+    for (int y = r.y0; y < r.y1; ++y)
+        for (int x = r.x0; x < r.x1; ++x, ++n)
+            if (std::abs(a.at(x, y, 0) - r_) < tol && std::abs(a.at(x, y, 1) - g) < tol && std::abs(a.at(x, y, 2) - b) < tol) ++hit;
+    return n ? double(hit) / double(n) : 0.0;
+}
+
+// Deterministic frames: one bounce from this frame's direct light, a fixed tap pattern and no temporal blend, so
+// a still view gives the same image every frame. The sidebar is hidden (N) so the viewport is the whole window.
+const char* kSetup =
+    "key N\n"
+    "set radiosity.temporally_vary=false\n"
+    "set radiosity.bounce_damping=1\n"
+    "set temporal.enabled=false\n"
+    "wait 2\n";
+
+TEST_F(Viewer, NoDisplayPrintsAClearMessage) {
+    const std::string cmd = std::string("env -u DISPLAY '") + DEEPGI_BINARY + "' view --fresh > '" + path("log.txt") + "' 2>&1";
+    const int status = std::system(cmd.c_str());
+    ASSERT_TRUE(WIFEXITED(status));
+    EXPECT_EQ(WEXITSTATUS(status), 1);
+    std::ifstream in(path("log.txt"));
+    const std::string log((std::istreambuf_iterator<char>(in)), {});
+    EXPECT_NE(log.find("deepgi view needs a display; use deepgi render for headless"), std::string::npos) << log;
+}
+
+TEST_F(Viewer, ScriptErrorsNameTheLine) {
+    ViewerRun r = view("wait 1\nfrobnicate 3\n");
+    EXPECT_EQ(r.rc, 1);
+    EXPECT_NE(r.log.find("script.txt:2: unknown action 'frobnicate'"), std::string::npos) << r.log;
+}
+
+TEST_F(Viewer, OrbitChangesTheView) {
+    ViewerRun r = view(std::string(kSetup) +
+                 "screenshot a.png\nwait 1\nscreenshot still.png\n"
+                 "drag middle 240 150 300 165\nwait 1\nscreenshot orbit.png\n"
+                 "key KP_7\nwait 1\nscreenshot top.png\n");
+    ASSERT_EQ(r.rc, 0) << r.log;
+    auto a = shot("a.png"), still = shot("still.png"), orbit = shot("orbit.png"), top = shot("top.png");
+    const double noise = meanAbsDiff(a, still), moved = meanAbsDiff(a, orbit), axis = meanAbsDiff(a, top);
+    std::printf("still %.4f, orbit %.4f, top view %.4f\n", noise, moved, axis);
+    EXPECT_LT(noise, 0.002) << "a still camera must give the same image";
+    EXPECT_GT(moved, 0.02) << "a 60x15 px middle-drag must turn the view";
+    EXPECT_GT(axis, 0.02) << "Numpad 7 must jump to the top view";
+}
+
+TEST_F(Viewer, ShowingNormalBufferShowsDecodedNormals) {
+    ViewerRun r = view(std::string(kSetup) + "screenshot final.png\nshow \"Normal 1\"\nwait 1\nscreenshot normal.png\n");
+    ASSERT_EQ(r.rc, 0) << r.log;
+    auto fin = shot("final.png"), nrm = shot("normal.png");
+    EXPECT_GT(meanAbsDiff(fin, nrm), 0.1);
+    // Cornell box from the front camera: the back wall faces +Z -> (0.5, 0.5, 1), the floor +Y -> (0.5, 1, 0.5),
+    // the red wall +X -> (1, 0.5, 0.5).
+    const double back = fractionNear(nrm, 0.5f, 0.5f, 1.0f, 0.06f);
+    const double floor = fractionNear(nrm, 0.5f, 1.0f, 0.5f, 0.06f);
+    const double left = fractionNear(nrm, 1.0f, 0.5f, 0.5f, 0.06f);
+    std::printf("back wall %.3f, floor %.3f, left wall %.3f of the viewport\n", back, floor, left);
+    EXPECT_GT(back, 0.05);
+    EXPECT_GT(floor, 0.01);
+    EXPECT_GT(left, 0.02);
+    EXPECT_LT(fractionNear(fin, 0.5f, 0.5f, 1.0f, 0.06f), 0.01) << "the final image is not the normal buffer";
+}
+
+TEST_F(Viewer, SettingChangesTheImage) {
+    ViewerRun r = view(std::string(kSetup) + "screenshot before.png\nset composite.exposure=2\nwait 1\nscreenshot after.png\n");
+    ASSERT_EQ(r.rc, 0) << r.log;
+    auto before = shot("before.png"), after = shot("after.png");
+    const double lb = meanChannel(before, 0) + meanChannel(before, 1) + meanChannel(before, 2);
+    const double la = meanChannel(after, 0) + meanChannel(after, 1) + meanChannel(after, 2);
+    std::printf("mean RGB sum %.3f -> %.3f\n", lb, la);
+    EXPECT_GT(la, lb + 0.05) << "+2 EV must brighten the image";
+}
+
+TEST_F(Viewer, HotReloadAndBrokenShader) {
+    fs::copy(DEEPGI_SHADER_DIR, path("shaders"), fs::copy_options::recursive);
+    const std::string frag = path("shaders/composite.frag");
+    ViewerRun r = view(std::string(kSetup) +
+                 "screenshot before.png\n"
+                 // Make the display output pure red; the viewer polls mtimes twice a second.
+                 "shell sed -i 's/oDisplay = vec4(/oDisplay = vec4(1.0, 0.0, 0.0, 1.0) + 0.0 * vec4(/' '" + frag + "'\n"
+                 "sleep 1.5\nwait 1\nscreenshot red.png\n"
+                 "dump_errors errors_ok.txt\n"
+                 // Now break it: the red program stays, the error overlay appears.
+                 "shell echo 'this is not GLSL;' >> '" + frag + "'\n"
+                 "sleep 1.5\nwait 1\nscreenshot broken.png\ndump_errors errors.txt\n",
+                 "--shaders '" + path("shaders") + "'");
+    ASSERT_EQ(r.rc, 0) << r.log;
+    auto before = shot("before.png"), red = shot("red.png"), broken = shot("broken.png");
+    std::printf("before R %.3f G %.3f; after edit R %.3f G %.3f\n", meanChannel(before, 0), meanChannel(before, 1),
+                meanChannel(red, 0), meanChannel(red, 1));
+    EXPECT_GT(meanChannel(red, 0), 0.9) << "the edited composite.frag must be live";
+    EXPECT_LT(meanChannel(red, 1), 0.05);
+    std::ifstream okIn(path("errors_ok.txt"));
+    EXPECT_EQ(std::string((std::istreambuf_iterator<char>(okIn)), {}), "");
+
+    std::ifstream errIn(path("errors.txt"));
+    const std::string errors((std::istreambuf_iterator<char>(errIn)), {});
+    EXPECT_NE(errors.find("composite.frag"), std::string::npos) << errors;
+    // The last good (red) program still renders above the overlay...
+    Region top{0, 60, kW, 120};
+    EXPECT_LT(meanAbsDiff(red, broken, top), 0.01);
+    // ...and the overlay (dark red panel, white text) covers the bottom of the viewport.
+    Region bottom{0, kH - 60, kW, kH - 10};
+    const double overlay = fractionNear(broken, 150.0f / 255.0f, 20.0f / 255.0f, 20.0f / 255.0f, 0.08f, bottom);
+    std::printf("overlay colour covers %.2f of the bottom strip\n", overlay);
+    EXPECT_GT(overlay, 0.3);
+}
+
+TEST_F(Viewer, F12WritesAScreenshotFolder) {
+    ViewerRun r = view(std::string(kSetup) + "capture\nwait 1\n", "--screenshots '" + path("shots") + "'");
+    ASSERT_EQ(r.rc, 0) << r.log;
+    ASSERT_TRUE(fs::exists(path("shots")));
+    int folders = 0;
+    for (const auto& d : fs::directory_iterator(path("shots"))) {
+        ++folders;
+        EXPECT_TRUE(fs::exists(d.path() / "final.png"));
+        EXPECT_TRUE(fs::exists(d.path() / "settings.json"));
+    }
+    EXPECT_EQ(folders, 1);
+}
+
+}  // namespace
+
+namespace {
+
+TEST_F(Viewer, ResizeKeepsRendering) {
+    ViewerRun r = view(std::string(kSetup) + "resize 320x200\nwait 2\nscreenshot small.png\n");
+    ASSERT_EQ(r.rc, 0) << r.log;
+    deepgi::FloatImage img = deepgi::readImage(path("small.png"));
+    EXPECT_EQ(img.width, 320);
+    EXPECT_EQ(img.height, 200);
+    EXPECT_GT(meanChannel(img, 0, Region{0, 60, 320, 170}), 0.02) << "the scene is still drawn after the resize";
+}
+
+TEST_F(Viewer, StateIsRestoredAndABrokenStateFileIsIgnored) {
+    ViewerRun first = view("set composite.exposure=3\nkey KP_7\nwait 1\n", "", false);
+    ASSERT_EQ(first.rc, 0) << first.log;
+    const std::string state = path("config/deepgi/viewer.json");
+    ASSERT_TRUE(fs::exists(state)) << first.log;
+    ViewerRun second = view("wait 1\ncapture\n", "--screenshots '" + path("shots") + "'", false);
+    ASSERT_EQ(second.rc, 0) << second.log;
+    std::string settingsJson;
+    for (const auto& d : fs::directory_iterator(path("shots"))) {
+        std::ifstream in(d.path() / "settings.json");
+        settingsJson.assign(std::istreambuf_iterator<char>(in), {});
+    }
+    EXPECT_NE(settingsJson.find("\"composite.exposure\": 3"), std::string::npos) << settingsJson;
+
+    std::ofstream(state) << "{ this is not json";
+    ViewerRun third = view("wait 1\n", "", false);
+    EXPECT_EQ(third.rc, 0) << third.log;
+    EXPECT_NE(third.log.find("ignoring the state file"), std::string::npos) << third.log;
+}
+
+}  // namespace
