@@ -284,7 +284,10 @@ bool Viewer::init() {
 
     RendererOptions ro;
     if (!opt_.shaderDir.empty()) ro.shaderDir = opt_.shaderDir;
-    ro.timing = TimingMode::WallClock;
+    // GPU timer queries where they are reliable; llvmpipe's miss vertex work and bin draws (platform.md).
+    const char* glRenderer = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
+    const bool software = glRenderer && (std::strstr(glRenderer, "llvmpipe") || std::strstr(glRenderer, "softpipe"));
+    ro.timing = software ? TimingMode::WallClock : TimingMode::GpuQueries;
     renderer_ = std::make_unique<Renderer>(ro);
     views_[0] = std::make_unique<BufferViewPass>();
     views_[1] = std::make_unique<BufferViewPass>();

@@ -218,16 +218,39 @@ void Renderer::render(const Settings& s) {
     if (config_.temporalFirst) std::swap(order[5], order[6]);  // temporal blend before the blur
 
     using clock = std::chrono::steady_clock;
+    const bool gpu = options_.timing == TimingMode::GpuQueries;
+    auto& queries = queries_[frameIndex_ % 2];
+    auto& queryNames = queryNames_[frameIndex_ % 2];
+    if (gpu) {
+        // Results of this set's previous use (two frames ago) are ready by now without stalling in practice.
+        for (size_t i = 0; i < queryNames.size(); ++i) {
+            GLuint64 ns = 0;
+            glGetQueryObjectui64v(queries[i].id(), GL_QUERY_RESULT, &ns);
+            timings_.push_back({queryNames[i], double(ns) * 1e-6});
+        }
+        queryNames.clear();
+    }
     if (options_.timing == TimingMode::WallClock) glFinish();
+    size_t q = 0;
     for (RenderPass* p : order) {
         if (!p->enabled(config_)) continue;
         auto t0 = clock::now();
+        if (gpu) {
+            if (q == queries.size()) {
+                GLuint id = 0;
+                glCreateQueries(GL_TIME_ELAPSED, 1, &id);
+                queries.emplace_back(id);
+            }
+            glBeginQuery(GL_TIME_ELAPSED, queries[q].id());
+        }
         p->execute(ctx);
-        if (options_.timing == TimingMode::WallClock) {
+        if (gpu) {
+            glEndQuery(GL_TIME_ELAPSED);
+            queryNames.push_back(p->name());
+            ++q;
+        } else if (options_.timing == TimingMode::WallClock) {
             glFinish();
             timings_.push_back({p->name(), std::chrono::duration<double, std::milli>(clock::now() - t0).count()});
-        } else {
-            timings_.push_back({p->name(), 0.0});
         }
     }
     glBindFramebuffer(GL_FRAMEBUFFER, 0);

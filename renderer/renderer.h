@@ -18,7 +18,7 @@ namespace deepgi {
 enum class TimingMode {
     None,       // no synchronisation
     WallClock,  // glFinish around each pass (llvmpipe: timer queries miss vertex work)
-    GpuQueries  // GL_TIME_ELAPSED per pass, read one frame late (GPUs)
+    GpuQueries  // GL_TIME_ELAPSED per pass; timings() then report the frame before last (no stall)
 };
 
 struct PassTiming {
@@ -102,7 +102,9 @@ private:
     bool historyValid_ = false;
     uint64_t frameIndex_ = 0;
     std::vector<PassTiming> timings_;
-    std::vector<gl::QueryHandle> queries_;
+    // GpuQueries: two sets of one GL_TIME_ELAPSED query per pass; a set is read back when reused two frames later.
+    std::vector<gl::QueryHandle> queries_[2];
+    std::vector<std::string> queryNames_[2];
 };
 
 }  // namespace deepgi

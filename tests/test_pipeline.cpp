@@ -29,3 +29,22 @@ TEST_F(GLTest, PipelineRendersFiniteImageWithColourBleeding) {
     EXPECT_GT(red, 0.01);
     EXPECT_GT(red, 2.0 * green) << "colour bleeding from the lit red wall";
 }
+
+// GPU timer-query mode reports every enabled pass (two frames late) with finite, non-negative times.
+TEST_F(GLTest, GpuTimerQueriesReportEveryPass) {
+    auto scene = cornellScene();
+    auto renderer = rendererFor(scene, 48, 36, "front");
+    renderer->setTimingMode(TimingMode::GpuQueries);
+    Settings s;
+    renderer->render(s);
+    EXPECT_TRUE(renderer->timings().empty()) << "no results before a query set is reused";
+    renderer->render(s);
+    renderer->render(s);
+    const auto& t = renderer->timings();
+    ASSERT_EQ(t.size(), 8u);  // all eight passes are enabled by default
+    EXPECT_EQ(t[1].name, "Deep G-buffer");
+    for (const auto& p : t) {
+        EXPECT_TRUE(std::isfinite(p.ms)) << p.name;
+        EXPECT_GE(p.ms, 0.0) << p.name;
+    }
+}
