@@ -10,7 +10,8 @@
 namespace deepgi {
 
 enum class SizeRule { Screen, ShadowMap };
-enum class Visualize { Color, Radiance, Depth, Normal, ShadowDepth };
+// Color: linear [0,1] colour (albedo); Display: already sRGB-encoded for the screen.
+enum class Visualize { Color, Radiance, Depth, Normal, ShadowDepth, Display };
 // Which total a texture counts towards in the memory report.
 enum class MemoryGroup { GBuffer, Radiosity, Extra };
 

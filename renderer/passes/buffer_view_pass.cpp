@@ -13,7 +13,8 @@ namespace {
 int resolveMode(ViewMode m, Visualize vis) {
     if (m != ViewMode::Auto) return int(m);
     switch (vis) {
-        case Visualize::Radiance: return int(ViewMode::Radiance);
+        case Visualize::Radiance:
+        case Visualize::Color: return int(ViewMode::Radiance);  // linear colour: exposure, then sRGB like radiance
         case Visualize::Depth: return int(ViewMode::Depth);
         case Visualize::Normal: return int(ViewMode::Normal);
         default: return int(ViewMode::Raw);

@@ -8,7 +8,7 @@ void CompositePass::declare(const PipelineConfig&, std::vector<TextureDecl>& out
     out.push_back({"Final Radiance", {"Final Radiance"}, GL_RGBA16F, GL_TEXTURE_2D, SizeRule::Screen, 1, MemoryGroup::Extra,
                    Visualize::Radiance, "Linear radiance of the final image (what final.exr holds)"});
     out.push_back({"Final Display", {"Final Display"}, GL_RGBA8, GL_TEXTURE_2D, SizeRule::Screen, 1, MemoryGroup::Extra,
-                   Visualize::Color, "Exposed, tone-mapped, sRGB-encoded final image (what final.png holds)"});
+                   Visualize::Display, "Exposed, tone-mapped, sRGB-encoded final image (what final.png holds)"});
 }
 
 void CompositePass::execute(FrameContext& ctx) {
