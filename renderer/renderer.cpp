@@ -1,5 +1,6 @@
 #include "renderer/renderer.h"
 
+#include "renderer/passes/ambient_occlusion_pass.h"
 #include "renderer/passes/bilateral_blur_pass.h"
 #include "renderer/passes/composite_pass.h"
 #include "renderer/passes/deep_gbuffer_pass.h"
@@ -54,6 +55,7 @@ Renderer::Renderer(RendererOptions options) : options_(std::move(options)) {
     passes_.push_back(std::make_unique<ReprojectRadiancePass>());
     passes_.push_back(std::make_unique<InputRadiancePass>());
     passes_.push_back(std::make_unique<RadiosityGatherPass>());
+    passes_.push_back(std::make_unique<AmbientOcclusionPass>());
     passes_.push_back(std::make_unique<BilateralBlurPass>());
     passes_.push_back(std::make_unique<TemporalBlendPass>());
     passes_.push_back(std::make_unique<CompositePass>());
@@ -98,6 +100,7 @@ PipelineConfig Renderer::makeConfig(const Settings& s) const {
     c.temporal = s.temporal;
     c.temporalFirst = s.filterOrder == 1 && s.temporal;
     c.depthPeel = s.generation == 1 && s.layer2;
+    c.ao = s.aoEnabled;
     for (const auto& l : effectiveLights(*scene_, s)) {
         if (l.type == LightType::Point) ++c.shadowCubeLayers;
         else ++c.shadowMapLayers;
@@ -215,7 +218,11 @@ void Renderer::render(const Settings& s) {
 
     std::vector<RenderPass*> order;
     for (const auto& p : passes_) order.push_back(p.get());
-    if (config_.temporalFirst) std::swap(order[5], order[6]);  // temporal blend before the blur
+    if (config_.temporalFirst) {  // temporal blend before the blur
+        auto blur = std::find_if(order.begin(), order.end(), [](RenderPass* p) { return dynamic_cast<BilateralBlurPass*>(p); });
+        auto temporal = std::find_if(order.begin(), order.end(), [](RenderPass* p) { return dynamic_cast<TemporalBlendPass*>(p); });
+        std::iter_swap(blur, temporal);
+    }
 
     using clock = std::chrono::steady_clock;
     if (options_.timing == TimingMode::WallClock) glFinish();
