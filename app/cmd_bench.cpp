@@ -37,6 +37,8 @@ CommandRegistrar registrar("bench", "Speed against error: sweep configurations a
     sub.add_option("--cache", a->o.cacheDir, "Reference cache folder (default: OUT/cache)");
     sub.add_option("--shaders", a->o.shaderDir, "Shader folder (default: the source tree's shaders/)");
     sub.add_flag("--quiet", a->o.quiet, "No progress output");
+    sub.add_flag("--cpu-time", a->o.cpuTiming, "Time passes by this thread's CPU time with llvmpipe on one thread (LP_NUM_THREADS=0): robust when other processes share the cores");
+    sub.add_option("--context", a->o.context, "OpenGL context: osmesa (llvmpipe) or egl (headless EGL: Mesa surfaceless or a GPU)")->capture_default_str();
     a->settings.add(sub);
     return [a]() {
         if (a->list) {

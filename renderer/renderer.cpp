@@ -16,6 +16,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <ctime>
 #include <cmath>
 #include <cstring>
 #include <stdexcept>
@@ -225,14 +226,21 @@ void Renderer::render(const Settings& s) {
     }
 
     using clock = std::chrono::steady_clock;
-    if (options_.timing == TimingMode::WallClock) glFinish();
+    const bool cpu = options_.timing == TimingMode::ThreadCpu;
+    auto cpuMs = [] {
+        timespec ts{};
+        clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+        return double(ts.tv_sec) * 1e3 + double(ts.tv_nsec) * 1e-6;
+    };
+    if (options_.timing == TimingMode::WallClock || cpu) glFinish();
     for (RenderPass* p : order) {
         if (!p->enabled(config_)) continue;
         auto t0 = clock::now();
+        const double c0 = cpu ? cpuMs() : 0.0;
         p->execute(ctx);
-        if (options_.timing == TimingMode::WallClock) {
+        if (options_.timing == TimingMode::WallClock || cpu) {
             glFinish();
-            timings_.push_back({p->name(), std::chrono::duration<double, std::milli>(clock::now() - t0).count()});
+            timings_.push_back({p->name(), cpu ? cpuMs() - c0 : std::chrono::duration<double, std::milli>(clock::now() - t0).count()});
         } else {
             timings_.push_back({p->name(), 0.0});
         }

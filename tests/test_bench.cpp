@@ -142,3 +142,36 @@ TEST(BenchCli, TinyRunWritesResults) {
     EXPECT_EQ(rows, 2);
     fs::remove_all(dir);
 }
+
+#include "renderer/gl/offscreen_context.h"
+#include "renderer/renderer.h"
+#include "renderer/scene/procedural.h"
+
+// The EGL context (Mesa's surfaceless platform here) renders the same pipeline; skipped where EGL cannot start.
+TEST(OffscreenContext, EglRendersAFrame) {
+    if (!gl::OffscreenContext::eglAvailable()) GTEST_SKIP() << "built without EGL";
+    std::unique_ptr<gl::OffscreenContext> ctx;
+    try {
+        ctx = std::make_unique<gl::OffscreenContext>("egl");
+    } catch (const std::exception& e) {
+        GTEST_SKIP() << e.what();
+    }
+    EXPECT_NE(ctx->description().find("egl"), std::string::npos);
+    auto s = std::make_shared<Scene>();
+    procedural::addFloor(*s, 10.0f, 0.0f, procedural::addMaterial(*s, glm::vec3(0.5f)));
+    procedural::addCamera(*s, "cam", {0, 1, 2}, {0, 0, 0});
+    s->computeBounds();
+    Renderer r;
+    r.setScene(s);
+    r.resize(32, 18);
+    r.setCamera(selectCamera(*s, "cam"));
+    r.render(Settings{});
+    const FloatImage img = r.readFinalRadiance();
+    double sum = 0.0;
+    for (float v : img.pixels) {
+        ASSERT_TRUE(std::isfinite(v));
+        sum += v;
+    }
+    EXPECT_GT(sum, 0.0);
+    EXPECT_THROW(gl::OffscreenContext("vulkan"), std::runtime_error);
+}

@@ -43,6 +43,8 @@ struct BenchOptions {
     Settings base;          // every configuration starts from these
     int wholeFrameWidth = 640, wholeFrameHeight = 360;  // 0 = skip the whole-frame check
     int wholeFrameFrames = 24;
+    bool cpuTiming = false;  // per-pass CPU time of this thread with LP_NUM_THREADS=0 (robust on a shared machine)
+    std::string context = "osmesa";  // or "egl" (gl/offscreen_context.h)
     bool quiet = false;
 };
 
