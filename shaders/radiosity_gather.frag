@@ -69,7 +69,9 @@ void main() {
         vec3 E0, E1 = vec3(0.0);
         float w0, w1 = 0.0;
         tapLayer(0, T, m, h0, hz, X, nX, r2, E0, w0);
+#ifndef DEEPGI_SINGLE_LAYER  // defined when layer 2 is off: no layer-2 code at all
         if (twoLayers) tapLayer(1, T, m, h0, hz, X, nX, r2, E1, w1);
+#endif
         float a0 = w0 * dot(E0, E0) + w0;
         float a1 = w1 * dot(E1, E1) + w1;
         bool pick0 = a0 > a1;
