@@ -19,6 +19,7 @@ CommandRegistrar registrar("render", "Render a glTF scene headless (OSMesa) to a
     sub.add_option("--buffers", job->buffers, "Buffers to dump as EXR: all, or comma-separated layer names (see `deepgi buffers`)");
     sub.add_option("--out", job->outDir, "Output folder")->capture_default_str();
     sub.add_option("--shaders", job->shaderDir, "Shader folder (default: the source tree's shaders/)");
+    sub.add_option("--context", job->context, "OpenGL context: osmesa (llvmpipe) or egl (headless EGL: Mesa surfaceless or a GPU)")->capture_default_str();
     settings->add(sub);
     return [job, size, settings]() {
         parseSize(*size, job->width, job->height);

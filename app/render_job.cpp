@@ -1,7 +1,7 @@
 #include "app/render_job.h"
 
 #include "renderer/core/image_io.h"
-#include "renderer/gl/headless_context.h"
+#include "renderer/gl/offscreen_context.h"
 #include "renderer/renderer.h"
 #include "renderer/scene/gltf_loader.h"
 
@@ -35,7 +35,7 @@ RenderJobResult runRenderJob(const RenderJob& job) {
     result.triangles = scene->triangleCount();
     Camera camera = selectCamera(*scene, job.camera);
 
-    gl::HeadlessContext context;
+    gl::OffscreenContext context(job.context);
     result.glRenderer = context.renderer();
     RendererOptions options;
     if (!job.shaderDir.empty()) options.shaderDir = job.shaderDir;

@@ -15,6 +15,7 @@ struct RenderJob {
     std::string buffers;  // "", "all" or comma-separated layer names
     std::string outDir = "out/render";
     std::string shaderDir;  // "" = the source tree's shaders/
+    std::string context = "osmesa";  // or "egl" (renderer/gl/offscreen_context.h)
     Settings settings;
 };
 

@@ -1,5 +1,6 @@
 #include "renderer/renderer.h"
 
+#include "renderer/passes/ambient_occlusion_pass.h"
 #include "renderer/passes/bilateral_blur_pass.h"
 #include "renderer/passes/composite_pass.h"
 #include "renderer/passes/deep_gbuffer_pass.h"
@@ -15,6 +16,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <ctime>
 #include <cmath>
 #include <cstring>
 #include <stdexcept>
@@ -54,6 +56,7 @@ Renderer::Renderer(RendererOptions options) : options_(std::move(options)) {
     passes_.push_back(std::make_unique<ReprojectRadiancePass>());
     passes_.push_back(std::make_unique<InputRadiancePass>());
     passes_.push_back(std::make_unique<RadiosityGatherPass>());
+    passes_.push_back(std::make_unique<AmbientOcclusionPass>());
     passes_.push_back(std::make_unique<BilateralBlurPass>());
     passes_.push_back(std::make_unique<TemporalBlendPass>());
     passes_.push_back(std::make_unique<CompositePass>());
@@ -98,6 +101,7 @@ PipelineConfig Renderer::makeConfig(const Settings& s) const {
     c.temporal = s.temporal;
     c.temporalFirst = s.filterOrder == 1 && s.temporal;
     c.depthPeel = s.generation == 1 && s.layer2;
+    c.ao = s.aoEnabled;
     for (const auto& l : effectiveLights(*scene_, s)) {
         if (l.type == LightType::Point) ++c.shadowCubeLayers;
         else ++c.shadowMapLayers;
@@ -215,10 +219,21 @@ void Renderer::render(const Settings& s) {
 
     std::vector<RenderPass*> order;
     for (const auto& p : passes_) order.push_back(p.get());
-    if (config_.temporalFirst) std::swap(order[5], order[6]);  // temporal blend before the blur
+    if (config_.temporalFirst) {  // temporal blend before the blur
+        auto blur = std::find_if(order.begin(), order.end(), [](RenderPass* p) { return dynamic_cast<BilateralBlurPass*>(p); });
+        auto temporal = std::find_if(order.begin(), order.end(), [](RenderPass* p) { return dynamic_cast<TemporalBlendPass*>(p); });
+        std::iter_swap(blur, temporal);
+    }
 
     using clock = std::chrono::steady_clock;
     const bool gpu = options_.timing == TimingMode::GpuQueries;
+    const bool cpu = options_.timing == TimingMode::ThreadCpu;
+    const bool finish = options_.timing == TimingMode::WallClock || cpu;
+    auto cpuMs = [] {
+        timespec ts{};
+        clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+        return double(ts.tv_sec) * 1e3 + double(ts.tv_nsec) * 1e-6;
+    };
     auto& queries = queries_[frameIndex_ % 2];
     auto& queryNames = queryNames_[frameIndex_ % 2];
     if (gpu) {
@@ -230,11 +245,12 @@ void Renderer::render(const Settings& s) {
         }
         queryNames.clear();
     }
-    if (options_.timing == TimingMode::WallClock) glFinish();
+    if (finish) glFinish();
     size_t q = 0;
     for (RenderPass* p : order) {
         if (!p->enabled(config_)) continue;
         auto t0 = clock::now();
+        const double c0 = cpu ? cpuMs() : 0.0;
         if (gpu) {
             if (q == queries.size()) {
                 GLuint id = 0;
@@ -248,9 +264,9 @@ void Renderer::render(const Settings& s) {
             glEndQuery(GL_TIME_ELAPSED);
             queryNames.push_back(p->name());
             ++q;
-        } else if (options_.timing == TimingMode::WallClock) {
+        } else if (finish) {
             glFinish();
-            timings_.push_back({p->name(), std::chrono::duration<double, std::milli>(clock::now() - t0).count()});
+            timings_.push_back({p->name(), cpu ? cpuMs() - c0 : std::chrono::duration<double, std::milli>(clock::now() - t0).count()});
         }
     }
     glBindFramebuffer(GL_FRAMEBUFFER, 0);

@@ -18,7 +18,9 @@ namespace deepgi {
 enum class TimingMode {
     None,       // no synchronisation
     WallClock,  // glFinish around each pass (llvmpipe: timer queries miss vertex work)
-    GpuQueries  // GL_TIME_ELAPSED per pass; timings() then report the frame before last (no stall)
+    GpuQueries,  // GL_TIME_ELAPSED per pass; timings() then report the frame before last (no stall)
+    ThreadCpu    // glFinish around each pass, CPU time of the calling thread: with LP_NUM_THREADS=0 llvmpipe renders on
+                 // it, so other processes' load on a shared machine does not count (single-threaded times)
 };
 
 struct PassTiming {

@@ -17,6 +17,26 @@ uniform int uUseLayer2;
 uniform float uTime;  // varies the pattern per frame when temporally varying taps
 layout(location = 0) out vec3 oIrradiance;
 
+// One layer's contribution of a tap: E = B * cos (zero beyond the radius) and whether the tap counts (w).
+// h0 = the homogeneous world position of the tap pixel at depth 0; adding d * hz gives depth d (worldFromDepth with
+// the matrix product distributed, shared by the two layers).
+void tapLayer(int j, ivec2 T, int m, vec4 h0, vec4 hz, vec3 X, vec3 nX, float r2, out vec3 E, out float w) {
+    E = vec3(0.0);
+    w = 0.0;
+    float dj = texelFetch(uDepth, ivec3(T, j), m).r;
+    if (isSky(dj)) return;
+    vec4 hw = h0 + dj * hz;
+    vec3 v = hw.xyz / hw.w - X;
+    float vv = dot(v, v);
+    if (vv <= 1e-12) return;
+    vec3 wh = v * inversesqrt(vv);
+    float cosX = dot(wh, nX);
+    bool ok = cosX > 0.0;
+    if (ok && uTapNormalTest != 0) ok = dot(-wh, octDecode(texelFetch(uNormal, ivec3(T, j), m).rg)) > 0.01;
+    if (ok && vv < r2) E = texelFetch(uRadiance, ivec3(T, j), m).rgb * cosX;
+    w = ok ? 1.0 : 0.0;  // a valid tap beyond the radius counts as used but dark (as in G3D)
+}
+
 void main() {
     ivec2 pix = ivec2(gl_FragCoord.xy);
     float d = texelFetch(uDepth, ivec3(pix, 0), 0).r;
@@ -30,6 +50,10 @@ void main() {
     float jitter = fract(sin(gl_FragCoord.x * 100.0 + gl_FragCoord.y + uTime) * 1e5 + sin(gl_FragCoord.y * 1000.0) * 1000.0) * 0.8 + 0.1;
     ivec2 size = ivec2(uViewport.xy);
     float r2 = uRadius * uRadius;
+    // worldFromDepth(p, d) = (c + p.x * cx + p.y * cy + d * hz).xyz / w.
+    vec4 cx = uInvViewProj[0] * (2.0 * uViewport.z), cy = uInvViewProj[1] * (2.0 * uViewport.w), hz = 2.0 * uInvViewProj[2];
+    vec4 c = uInvViewProj[3] - uInvViewProj[0] - uInvViewProj[1] - uInvViewProj[2];
+    bool twoLayers = uUseLayer2 != 0;
     vec3 sum = vec3(0.0);
     float used = 0.0;
     for (int i = 0; i < uNumSamples; ++i) {
@@ -40,30 +64,19 @@ void main() {
         if (any(lessThan(Y, ivec2(0))) || any(greaterThanEqual(Y, size))) continue;  // off-screen: no data
         int m = clamp(findMSB(int(h)) - uLogMaxOffset, uMinMip, uMaxMip);
         ivec2 T = Y >> m;
-        vec3 E[2];
-        float w[2];
-        for (int j = 0; j < 2; ++j) {
-            E[j] = vec3(0.0);
-            w[j] = 0.0;
-            if (j == 1 && uUseLayer2 == 0) break;
-            float dj = texelFetch(uDepth, ivec3(T, j), m).r;
-            if (isSky(dj)) continue;
-            vec3 Yj = worldFromDepth(vec2(Y) + 0.5, dj, uInvViewProj);
-            vec3 v = Yj - X;
-            float vv = dot(v, v);
-            if (vv <= 1e-12) continue;
-            vec3 wh = v * inversesqrt(vv);
-            float cosX = dot(wh, nX);
-            bool ok = cosX > 0.0;
-            if (ok && uTapNormalTest != 0) ok = dot(-wh, octDecode(texelFetch(uNormal, ivec3(T, j), m).rg)) > 0.01;
-            if (ok && vv < r2) E[j] = texelFetch(uRadiance, ivec3(T, j), m).rgb * cosX;
-            w[j] = ok ? 1.0 : 0.0;  // a valid tap beyond the radius counts as used but dark (as in G3D)
-        }
-        float a0 = w[0] * dot(E[0], E[0]) + w[0];
-        float a1 = w[1] * dot(E[1], E[1]) + w[1];
-        int pick = a0 > a1 ? 0 : 1;
-        sum += E[pick];
-        used += w[pick];
+        vec2 P = vec2(Y) + 0.5;
+        vec4 h0 = c + P.x * cx + P.y * cy;
+        vec3 E0, E1 = vec3(0.0);
+        float w0, w1 = 0.0;
+        tapLayer(0, T, m, h0, hz, X, nX, r2, E0, w0);
+#ifndef DEEPGI_SINGLE_LAYER  // defined when layer 2 is off: no layer-2 code at all
+        if (twoLayers) tapLayer(1, T, m, h0, hz, X, nX, r2, E1, w1);
+#endif
+        float a0 = w0 * dot(E0, E0) + w0;
+        float a1 = w1 * dot(E1, E1) + w1;
+        bool pick0 = a0 > a1;
+        sum += pick0 ? E0 : E1;
+        used += pick0 ? w0 : w1;
     }
     oIrradiance = sanitize(2.0 * PI * sum / (used + 1e-5));
 }

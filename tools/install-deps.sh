@@ -3,7 +3,7 @@
 set -euo pipefail
 PKGS=(build-essential cmake pkg-config
   libglfw3-dev libglm-dev libimgui-dev libstb-dev libtinygltf-dev nlohmann-json3-dev libcli11-dev
-  libopenimageio-dev openimageio-tools libosmesa6-dev python3-glad libembree-dev libgtest-dev
+  libopenimageio-dev openimageio-tools libosmesa6-dev libegl-dev python3-glad libembree-dev libgtest-dev
   glslang-tools xvfb xauth imagemagick)
 missing=()
 for p in "${PKGS[@]}"; do

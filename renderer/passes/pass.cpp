@@ -6,7 +6,7 @@ namespace deepgi {
 
 bool PipelineConfig::operator==(const PipelineConfig& o) const {
     return layer2 == o.layer2 && emission == o.emission && indirect == o.indirect && seedComposite == o.seedComposite &&
-           blur == o.blur && temporal == o.temporal && temporalFirst == o.temporalFirst && depthPeel == o.depthPeel &&
+           blur == o.blur && temporal == o.temporal && temporalFirst == o.temporalFirst && depthPeel == o.depthPeel && ao == o.ao &&
            shadowMapLayers == o.shadowMapLayers && shadowCubeLayers == o.shadowCubeLayers;
 }
 

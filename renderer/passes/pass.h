@@ -24,6 +24,7 @@ struct PipelineConfig {
     bool temporal = true;
     bool temporalFirst = false;
     bool depthPeel = false;
+    bool ao = false;           // the ambient-occlusion pass runs
     int shadowMapLayers = 0;   // directional + spot lights
     int shadowCubeLayers = 0;  // point lights
     bool operator==(const PipelineConfig& o) const;

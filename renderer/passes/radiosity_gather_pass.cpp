@@ -21,7 +21,10 @@ void RadiosityGatherPass::declare(const PipelineConfig&, std::vector<TextureDecl
 
 void RadiosityGatherPass::execute(FrameContext& ctx) {
     const Settings& s = ctx.settings;
-    GLuint prog = ctx.shaders.get({"fullscreen.vert", "", "radiosity_gather.frag", "", {}});
+    // Layer 2 off: a variant without the layer-2 code (llvmpipe runs a branch on a uniform anyway).
+    std::vector<std::string> defines;
+    if (!ctx.config.layer2) defines.push_back("DEEPGI_SINGLE_LAYER");
+    GLuint prog = ctx.shaders.get({"fullscreen.vert", "", "radiosity_gather.frag", "", defines});
     const int levels = ctx.textures.entry("Input Radiance").decl.levels;
     setUniform(prog, "uNumSamples", s.numSamples);
     setUniform(prog, "uSpiralTurns", float(spiralTurns(s.numSamples)));

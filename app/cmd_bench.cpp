@@ -1,0 +1,73 @@
+// deepgi bench: speed against error over a sweep of configurations, against path-traced references.
+#include "app/command.h"
+#include "app/options.h"
+#include "renderer/bench/bench.h"
+
+#include <cstdio>
+#include <sstream>
+
+namespace deepgi {
+namespace {
+
+struct BenchArgs {
+    std::vector<std::string> scenes, cameras;
+    std::string size = "320x180";
+    std::string wholeSize = "640x360";
+    std::string configs;
+    bool list = false;
+    SettingsOptions settings;
+    bench::BenchOptions o;
+};
+
+CommandRegistrar registrar("bench", "Speed against error: sweep configurations against path-traced references", 35, [](CLI::App& sub) {
+    auto a = std::make_shared<BenchArgs>();
+    sub.add_option("--scene", a->scenes, "glTF scene (repeatable; default: the atrium and the Cornell box)");
+    sub.add_option("--camera", a->cameras, "Camera of each --scene, in order (default: courtyard and front; '' = the scene's first)");
+    sub.add_option("--size", a->size, "Image size WxH")->capture_default_str();
+    sub.add_option("--frames", a->o.frames, "Frames per configuration (still camera)")->capture_default_str()->check(CLI::Range(2, 10000));
+    sub.add_option("--timed-frames", a->o.timedFrames, "The last frames: timing medians and stability")->capture_default_str()->check(CLI::Range(1, 10000));
+    sub.add_option("--spp", a->o.spp, "Reference samples per pixel")->capture_default_str()->check(CLI::Range(1, 1 << 20));
+    sub.add_option("--bounces", a->o.bounces, "Reference bounces")->capture_default_str()->check(CLI::Range(0, 1000));
+    sub.add_option("--path-frames", a->o.pathFrames, "Frames of the sideways camera path (0 = none)")->capture_default_str()->check(CLI::Range(0, 1000));
+    sub.add_option("--path-spp", a->o.pathSpp, "Samples per pixel of the path references")->capture_default_str()->check(CLI::Range(1, 1 << 20));
+    sub.add_option("--configs", a->configs, "Comma-separated configurations to run (default: all; see --list)");
+    sub.add_flag("--list", a->list, "List the configurations and exit");
+    sub.add_option("--whole-frame-size", a->wholeSize, "Size of the whole-frame check of the first scene, balanced preset (0x0 = skip)")->capture_default_str();
+    sub.add_option("--out", a->o.outDir, "Output folder")->capture_default_str();
+    sub.add_option("--cache", a->o.cacheDir, "Reference cache folder (default: OUT/cache)");
+    sub.add_option("--shaders", a->o.shaderDir, "Shader folder (default: the source tree's shaders/)");
+    sub.add_flag("--quiet", a->o.quiet, "No progress output");
+    sub.add_flag("--cpu-time", a->o.cpuTiming, "Time passes by this thread's CPU time with llvmpipe on one thread (LP_NUM_THREADS=0): robust when other processes share the cores");
+    sub.add_option("--context", a->o.context, "OpenGL context: osmesa (llvmpipe) or egl (headless EGL: Mesa surfaceless or a GPU)")->capture_default_str();
+    a->settings.add(sub);
+    return [a]() {
+        if (a->list) {
+            for (const auto& c : bench::defaultConfigs()) std::printf("%-20s %s\n", c.name.c_str(), c.description.c_str());
+            return 0;
+        }
+        bench::BenchOptions& o = a->o;
+        parseSize(a->size, o.width, o.height);
+        parseSize(a->wholeSize, o.wholeFrameWidth, o.wholeFrameHeight, true);
+        o.base = a->settings.build();
+        if (a->scenes.empty()) {
+            o.views = {{std::string(DEEPGI_ASSET_DIR) + "/atrium/atrium.gltf", a->cameras.size() > 0 ? a->cameras[0] : "courtyard"},
+                       {std::string(DEEPGI_ASSET_DIR) + "/cornell_box/cornell_box.gltf", a->cameras.size() > 1 ? a->cameras[1] : "front"}};
+        } else {
+            if (a->cameras.size() > a->scenes.size()) throw std::runtime_error("bench: more --camera than --scene options");
+            for (size_t i = 0; i < a->scenes.size(); ++i) o.views.push_back({a->scenes[i], i < a->cameras.size() ? a->cameras[i] : ""});
+        }
+        std::stringstream ss(a->configs);
+        std::string item;
+        while (std::getline(ss, item, ','))
+            if (!item.empty()) o.configs.push_back(item);
+        o.timedFrames = std::min(o.timedFrames, o.frames);
+        const bench::BenchResult r = bench::runBench(o);
+        std::printf("deepgi bench on %s: %zu rows -> %s/results.csv, results.md, speed_error.png, grid_*.png\n",
+                    r.glRenderer.c_str(), r.rows.size(), o.outDir.c_str());
+        for (const auto& l : r.ratioLines) std::printf("  %s\n", l.c_str());
+        return 0;
+    };
+});
+
+}  // namespace
+}  // namespace deepgi

@@ -1,0 +1,74 @@
+#version 450 core
+// Two-layer ambient occlusion (technique.md 1.10): the AlchemyAO estimator with the radiosity gather's spiral
+// taps, tap count, projected radius and per-tap mip level, taking the max over the two layers per tap (a coarse
+// tap is reconstructed at the pixel its point-sampled depth came from, else a grazing plane occludes itself):
+//   AO = max(0, 1 - sqrt(intensity * pi/N * sum_i max(0, A_i1, A_i2)))
+//   A  = max(0, 1 - v.v/r^2) * max(0, (v.n - bias) / sqrt(v.v + eps)),  v = Y - X (camera space)
+#include "common.glsl"
+layout(binding = 4) uniform sampler2DArray uDepth;
+layout(binding = 8) uniform sampler2DArray uNormal;
+uniform int uNumSamples;
+uniform float uSpiralTurns;
+uniform float uRadius;
+uniform int uMinMip;
+uniform int uMaxMip;
+uniform int uLogMaxOffset;
+uniform int uUseLayer2;
+uniform float uTime;
+uniform float uBias;
+uniform float uIntensity;
+layout(location = 0) out float oAO;
+
+// Camera-space position from a pixel position (centre = +0.5) and a depth-buffer value: one divide for z.
+vec3 viewFromDepth(vec2 pixel, float d) {
+    vec2 ndc = pixel * uViewport.zw * 2.0 - 1.0;
+    float z = eyeDepthCurrent(d);
+    if (uCameraPos.w > 0.5) return vec3(z * (ndc + vec2(uProj[2][0], uProj[2][1])) / vec2(uProj[0][0], uProj[1][1]), -z);
+    return vec3((ndc - vec2(uProj[3][0], uProj[3][1])) / vec2(uProj[0][0], uProj[1][1]), -z);
+}
+
+// The full-resolution pixel whose depth mip texel T of level m holds (the rotated-grid point sample of
+// gather_mips.frag), so a coarse tap is reconstructed where its depth was measured.
+ivec2 sourcePixel(ivec2 T, int m, ivec2 size) {
+    for (int k = m; k > 0; --k) T = clamp(T * 2 + ivec2(T.y & 1, T.x & 1), ivec2(0), max(size >> (k - 1), ivec2(1)) - 1);
+    return T;
+}
+
+void main() {
+    ivec2 pix = ivec2(gl_FragCoord.xy);
+    float d = texelFetch(uDepth, ivec3(pix, 0), 0).r;
+    if (isSky(d)) { oAO = 1.0; return; }
+    vec3 X = viewFromDepth(vec2(pix) + 0.5, d);
+    vec3 nX = normalize(mat3(uView) * octDecode(texelFetch(uNormal, ivec3(pix, 0), 0).rg));
+    float z = -X.z;
+    float rss = uCameraPos.w > 0.5 ? uClip.z * uRadius / max(z, 1e-6) : uClip.z * uRadius;
+    // The gather's per-pixel rotation and jitter, so both passes see the same taps.
+    float phi = float((3 * pix.x) ^ (pix.y + pix.x * pix.y)) * 10.0 + uTime;
+    float jitter = fract(sin(gl_FragCoord.x * 100.0 + gl_FragCoord.y + uTime) * 1e5 + sin(gl_FragCoord.y * 1000.0) * 1000.0) * 0.8 + 0.1;
+    ivec2 size = ivec2(uViewport.xy);
+    float r2 = uRadius * uRadius;
+    float eps = 1e-4 * r2;
+    float sum = 0.0;
+    int layers = uUseLayer2 != 0 ? 2 : 1;
+    for (int i = 0; i < uNumSamples; ++i) {
+        float alpha = (float(i) + jitter) / float(uNumSamples);
+        float theta = alpha * uSpiralTurns * 6.28 + phi;
+        float h = alpha * rss;
+        ivec2 Y = pix + ivec2(h * vec2(cos(theta), sin(theta)));
+        if (any(lessThan(Y, ivec2(0))) || any(greaterThanEqual(Y, size))) continue;  // off-screen: unoccluded
+        int m = clamp(findMSB(int(h)) - uLogMaxOffset, uMinMip, uMaxMip);
+        ivec2 T = Y >> m;
+        vec2 P = vec2(sourcePixel(T, m, size)) + 0.5;
+        float best = 0.0;
+        for (int j = 0; j < layers; ++j) {
+            float dj = texelFetch(uDepth, ivec3(T, j), m).r;
+            if (isSky(dj)) continue;
+            vec3 v = viewFromDepth(P, dj) - X;
+            float vv = dot(v, v);
+            float a = max(0.0, 1.0 - vv / r2) * max(0.0, (dot(v, nX) - uBias) * inversesqrt(vv + eps));
+            best = max(best, a);
+        }
+        sum += best;
+    }
+    oAO = max(0.0, 1.0 - sqrt(uIntensity * PI / float(uNumSamples) * sum));
+}
