@@ -27,13 +27,6 @@ vec3 viewFromDepth(vec2 pixel, float d) {
     return vec3((ndc - vec2(uProj[3][0], uProj[3][1])) / vec2(uProj[0][0], uProj[1][1]), -z);
 }
 
-// The full-resolution pixel whose depth mip texel T of level m holds (the rotated-grid point sample of
-// gather_mips.frag), so a coarse tap is reconstructed where its depth was measured.
-ivec2 sourcePixel(ivec2 T, int m, ivec2 size) {
-    for (int k = m; k > 0; --k) T = clamp(T * 2 + ivec2(T.y & 1, T.x & 1), ivec2(0), max(size >> (k - 1), ivec2(1)) - 1);
-    return T;
-}
-
 void main() {
     ivec2 pix = ivec2(gl_FragCoord.xy);
     float d = texelFetch(uDepth, ivec3(pix, 0), 0).r;

@@ -60,3 +60,10 @@ vec3 octDecode(vec2 e) {
 }
 
 bool isSky(float d) { return d >= 1.0; }
+
+// The full-resolution pixel whose sample mip texel T of level m holds: gather_mips.frag's rotated-grid choice,
+// q = clamp(2p + (p.y & 1, p.x & 1)), followed back to level 0. size = level-0 size.
+ivec2 sourcePixel(ivec2 T, int m, ivec2 size) {
+    for (int k = m; k > 0; --k) T = clamp(T * 2 + ivec2(T.y & 1, T.x & 1), ivec2(0), max(size >> (k - 1), ivec2(1)) - 1);
+    return T;
+}

@@ -64,6 +64,8 @@ void main() {
         if (any(lessThan(Y, ivec2(0))) || any(greaterThanEqual(Y, size))) continue;  // off-screen: no data
         int m = clamp(findMSB(int(h)) - uLogMaxOffset, uMinMip, uMaxMip);
         ivec2 T = Y >> m;
+        // xy at full resolution, z from the coarse level, as G3D does. Placing the tap at its sample's source pixel
+        // instead (sourcePixel(), as the AO pass must) changed the indirect error by < 0.001 (docs/BENCHMARKS.md).
         vec2 P = vec2(Y) + 0.5;
         vec4 h0 = c + P.x * cx + P.y * cy;
         vec3 E0, E1 = vec3(0.0);
