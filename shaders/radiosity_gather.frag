@@ -65,5 +65,5 @@ void main() {
         sum += E[pick];
         used += w[pick];
     }
-    oIrradiance = sanitize(2.0 * PI * sum / (used + 1e-5));
+    oIrradiance = sanitizeR11G11B10(2.0 * PI * sum / (used + 1e-5), gl_FragCoord.xy);
 }
