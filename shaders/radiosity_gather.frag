@@ -31,6 +31,7 @@ void main() {
     ivec2 size = ivec2(uViewport.xy);
     float r2 = uRadius * uRadius;
     vec3 sum = vec3(0.0);
+    vec3 brightest = vec3(0.0);  // per channel, the largest radiance among the taps that contribute
     float used = 0.0;
     for (int i = 0; i < uNumSamples; ++i) {
         float alpha = (float(i) + jitter) / float(uNumSamples);
@@ -40,10 +41,10 @@ void main() {
         if (any(lessThan(Y, ivec2(0))) || any(greaterThanEqual(Y, size))) continue;  // off-screen: no data
         int m = clamp(findMSB(int(h)) - uLogMaxOffset, uMinMip, uMaxMip);
         ivec2 T = Y >> m;
-        vec3 E[2];
+        vec3 E[2], B[2];
         float w[2];
         for (int j = 0; j < 2; ++j) {
-            E[j] = vec3(0.0);
+            E[j] = B[j] = vec3(0.0);
             w[j] = 0.0;
             if (j == 1 && uUseLayer2 == 0) break;
             float dj = texelFetch(uDepth, ivec3(T, j), m).r;
@@ -56,14 +57,22 @@ void main() {
             float cosX = dot(wh, nX);
             bool ok = cosX > 0.0;
             if (ok && uTapNormalTest != 0) ok = dot(-wh, octDecode(texelFetch(uNormal, ivec3(T, j), m).rg)) > 0.01;
-            if (ok && vv < r2) E[j] = texelFetch(uRadiance, ivec3(T, j), m).rgb * cosX;
+            if (ok && vv < r2) {
+                B[j] = texelFetch(uRadiance, ivec3(T, j), m).rgb;
+                E[j] = B[j] * cosX;
+            }
             w[j] = ok ? 1.0 : 0.0;  // a valid tap beyond the radius counts as used but dark (as in G3D)
         }
         float a0 = w[0] * dot(E[0], E[0]) + w[0];
         float a1 = w[1] * dot(E[1], E[1]) + w[1];
         int pick = a0 > a1 ? 0 : 1;
         sum += E[pick];
+        brightest = max(brightest, B[pick]);
         used += w[pick];
     }
-    oIrradiance = sanitizeR11G11B10(2.0 * PI * sum / (used + 1e-5), gl_FragCoord.xy);
+    // Irradiance from surroundings no brighter than `brightest` is at most pi * brightest. The 2pi/M_used
+    // estimator can exceed that where the accepted taps are steep (a few percent to +55%); with full multi-bounce
+    // feedback that is a loop gain rho * k above 1 and the radiance runs away to the format maximum. Bounded
+    // this way, the feedback is a contraction for albedo < 1 (tests/test_hard_stability.cpp, LongRun...).
+    oIrradiance = sanitizeR11G11B10(min(2.0 * PI * sum / (used + 1e-5), PI * brightest), gl_FragCoord.xy);
 }
