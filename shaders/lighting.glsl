@@ -55,7 +55,7 @@ vec3 directIrradiance(vec3 P, vec3 n) {
             float d2 = dot(d, d);
             dist = sqrt(d2);
             toLight = dist > 0.0 ? d / dist : vec3(0.0, 1.0, 0.0);
-            atten = rangeWindow(dist, L.position.w) / max(d2, 1e-4);
+            atten = rangeWindow(dist, L.position.w) / max(d2, 1e-20);  // guards only 0 (scale-free; see lighting.cpp)
             if (type == 2) {
                 float cd = dot(L.direction.xyz, -toLight);
                 float t = clamp((cd - L.direction.w) / max(L.params.x - L.direction.w, 1e-4), 0.0, 1.0);
