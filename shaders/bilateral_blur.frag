@@ -59,5 +59,5 @@ void main() {
             total += w;
         }
     }
-    oValue = sanitize(sum / total);  // total >= kernel[0] > 0: the centre always counts
+    oValue = sanitizeR11G11B10(sum / total, gl_FragCoord.xy);  // total >= kernel[0] > 0: the centre always counts
 }

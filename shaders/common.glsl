@@ -17,12 +17,34 @@ layout(std140, binding = 0) uniform FrameUniforms {
 };
 
 const float PI = 3.14159265358979;
-const float MAX_RADIANCE = 65000.0;  // below the R11F_G11F_B10F maximum (64512 for B is clamped by the format)
+// The R11F_G11F_B10F maximum of the B channel (R and G reach 65024): one limit for all three channels, so a clamped
+// pixel stays grey.
+const float MAX_RADIANCE = 64512.0;
 
 // Finite, non-negative and below the format maximum: everything a later frame reads goes through this.
 vec3 sanitize(vec3 v) {
     if (any(isnan(v)) || any(isinf(v))) return vec3(0.0);
     return clamp(v, vec3(0.0), vec3(MAX_RADIANCE));
+}
+
+// sanitize(), then rounded to an R11F_G11F_B10F value (R, G: 6 mantissa bits, B: 5; denormals below 2^-14) so that
+// the store itself is exact: stochastically, up or down with the probabilities that make the expected stored value
+// equal v (the dither is a hash of the pixel and the frame). llvmpipe truncates when it converts to this format; in
+// a history blended with alpha = 0.92 every frame, truncation ratchets the value down (a decrease always survives
+// the store, an increase only when it is at least one step), B with its coarser step most: white surfaces turned
+// yellow (up to 17% between channels) and the bounce feedback lost energy. Round-to-nearest still stalls a
+// history up to +-6 steps away from its input; stochastic rounding does not (tests/test_hard_stability.cpp,
+// docs/ROBUSTNESS.md). Values already representable are stored unchanged.
+vec3 sanitizeR11G11B10(vec3 v, vec2 fragCoord) {
+    v = sanitize(v);
+    ivec3 e;
+    frexp(v, e);                                                         // v = m * 2^e, m in [0.5, 1)
+    vec3 scale = exp2(vec3(7.0, 7.0, 6.0) - vec3(max(e, ivec3(-13))));  // 1 / step (the denormal step below 2^-14)
+    uint h = (uint(fragCoord.x) * 1664525u) ^ (uint(fragCoord.y) * 1013904223u) ^ (uint(uClip.w) * 2654435769u);
+    h = (h ^ (h >> 16u)) * 2246822519u;
+    h = (h ^ (h >> 13u)) * 3266489917u;
+    float u = float(h >> 8u) * (1.0 / 16777216.0);  // [0, 1), the same for the three channels (grey stays grey)
+    return min(floor(v * scale + u) / scale, vec3(MAX_RADIANCE));
 }
 
 // Distance along the view axis from a [0,1] depth-buffer value. clip = (near, far), persp = 1 or 0.

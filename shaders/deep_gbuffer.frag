@@ -44,6 +44,6 @@ void main() {
     oAlbedo = clamp(base.rgb, 0.0, 1.0);
     oNormal = octEncode(n);
 #ifdef EMISSION
-    oEmission = sanitize(emission(gs.uv));
+    oEmission = sanitizeR11G11B10(emission(gs.uv), gl_FragCoord.xy);
 #endif
 }

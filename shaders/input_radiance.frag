@@ -24,5 +24,5 @@ void main() {
     if (uFeedback != 0 && uLayer == 0) E += (1.0 - uDamping) * texelFetch(uReprojected, pix, 0).rgb;
     vec3 B = albedo / PI * E;
     if (uHasEmission != 0) B += texelFetch(uEmission, ivec3(pix, uLayer), 0).rgb;
-    oRadiance = sanitize(B);
+    oRadiance = sanitizeR11G11B10(B, gl_FragCoord.xy);
 }

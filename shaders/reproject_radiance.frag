@@ -9,5 +9,5 @@ void main() {
     ivec2 pix = ivec2(gl_FragCoord.xy);
     vec2 prevUV;
     float w = reprojectionWeight(pix, prevUV);
-    oReprojected = w > 0.0 ? sanitize(texture(uHistory, prevUV).rgb) : vec3(0.0);
+    oReprojected = w > 0.0 ? sanitizeR11G11B10(texture(uHistory, prevUV).rgb, gl_FragCoord.xy) : vec3(0.0);
 }

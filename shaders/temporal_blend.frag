@@ -12,5 +12,5 @@ void main() {
     float w = uAlpha * reprojectionWeight(pix, prevUV);
     vec3 cur = texelFetch(uCurrent, pix, 0).rgb;
     vec3 prev = texelFetch(uReprojected, pix, 0).rgb;
-    oValue = sanitize(mix(cur, prev, w));
+    oValue = sanitizeR11G11B10(mix(cur, prev, w), gl_FragCoord.xy);
 }

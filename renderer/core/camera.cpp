@@ -45,7 +45,9 @@ void fitClipPlanes(Camera& cam, const Aabb& b) {
         zmax = std::max(zmax, d);
     }
     const float span = std::max(zmax - std::max(zmin, 0.0f), 1e-6f);
-    cam.zfar = zmax + 0.05f * span + 1e-6f;
+    // A margin relative to the distance as well: for a flat scene facing the camera (span 0) an absolute 1e-6 left
+    // the surface at depth 1.0 in float, where it reads as sky (tests/test_hard_cases.cpp, back faces / full screen).
+    cam.zfar = zmax + 0.05f * span + 1e-3f * std::abs(zmax) + 1e-6f;
     // Near: never behind the camera; at least 1/10000 of far for precision.
     cam.znear = std::max({zmin * 0.9f, cam.zfar * 1e-4f, 1e-7f});
     if (cam.znear >= cam.zfar) cam.znear = cam.zfar * 1e-4f;

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
+#include <unistd.h>
 
 namespace deepgi {
 
@@ -20,7 +21,45 @@ uint64_t textureBytes(const TextureDecl& d, int w, int h, int levels) {
     return bytes;
 }
 
+uint64_t TextureRegistry::memoryBudget() const {
+    if (budget_ > 0) return budget_;
+    const long pages = sysconf(_SC_PHYS_PAGES), pageSize = sysconf(_SC_PAGE_SIZE);
+    return pages > 0 && pageSize > 0 ? uint64_t(pages) * uint64_t(pageSize) / 2 : uint64_t(4) << 30;
+}
+
+static std::string mib(uint64_t bytes) { return std::to_string((bytes + (1u << 20) - 1) >> 20) + " MiB"; }
+
 void TextureRegistry::reconcile(const std::vector<TextureDecl>& decls, int screenW, int screenH, int shadowSize) {
+    // Before any allocation: every texture within the implementation's size limits, all of them within the budget.
+    GLint maxSize = 0, maxCube = 0, maxLayers = 0;
+    glGetIntegerv(GL_MAX_TEXTURE_SIZE, &maxSize);
+    glGetIntegerv(GL_MAX_CUBE_MAP_TEXTURE_SIZE, &maxCube);
+    glGetIntegerv(GL_MAX_ARRAY_TEXTURE_LAYERS, &maxLayers);
+    uint64_t total = 0;
+    for (const auto& d : decls) {
+        const bool cube = d.target == GL_TEXTURE_CUBE_MAP_ARRAY;
+        const int w = d.size == SizeRule::Screen ? screenW : shadowSize;
+        const int h = d.size == SizeRule::Screen ? screenH : shadowSize;
+        const int limit = cube ? maxCube : maxSize;
+        if (limit > 0 && (w > limit || h > limit))
+            throw std::runtime_error("cannot allocate texture '" + d.name + "' at " + std::to_string(w) + "x" +
+                                     std::to_string(h) + ": larger than the " + (cube ? "GL_MAX_CUBE_MAP_TEXTURE_SIZE" : "GL_MAX_TEXTURE_SIZE") +
+                                     " of this OpenGL implementation (" + std::to_string(limit) + ")");
+        const int layers = d.layers() * (cube ? 6 : 1);
+        if (d.target != GL_TEXTURE_2D && maxLayers > 0 && layers > maxLayers)
+            throw std::runtime_error("cannot allocate texture '" + d.name + "' with " + std::to_string(layers) +
+                                     " layers: more than GL_MAX_ARRAY_TEXTURE_LAYERS (" + std::to_string(maxLayers) + ")");
+        if (w > 0 && h > 0) {
+            const int levels = std::min(std::max(d.levels, 1), 1 + int(std::log2(double(std::max(w, h)))));
+            total += textureBytes(d, w, h, levels) * (cube ? 6 : 1);
+        }
+    }
+    if (total > memoryBudget())
+        throw std::runtime_error("the textures for " + std::to_string(screenW) + "x" + std::to_string(screenH) +
+                                 " (shadow maps " + std::to_string(shadowSize) + ") need " + mib(total) +
+                                 ", more than the memory budget of " + mib(memoryBudget()) +
+                                 (budget_ > 0 ? "" : " (half of the physical memory)") + "; use a smaller size");
+
     std::vector<Entry> next;
     next.reserve(decls.size());
     for (const auto& d : decls) {

@@ -62,12 +62,18 @@ public:
     std::vector<std::string> layerNames() const;  // every viewable layer, in declaration order
 
     MemoryReport memoryReport() const;
+    // The most bytes the declared textures may need together; 0 (default) = half of the physical memory. Checked
+    // with GL_MAX_TEXTURE_SIZE before anything is allocated: a size too large is a clear std::runtime_error,
+    // never a driver that tries (llvmpipe keeps textures in system memory and would take it all).
+    void setMemoryBudget(uint64_t bytes) { budget_ = bytes; }
+    uint64_t memoryBudget() const;
     // Changes whenever a texture is created or released (framebuffers that attach textures must be rebuilt).
     uint64_t generation() const { return generation_; }
 
 private:
     std::vector<Entry> entries_;
     uint64_t generation_ = 1;
+    uint64_t budget_ = 0;
 };
 
 uint64_t textureBytes(const TextureDecl& d, int w, int h, int levels);

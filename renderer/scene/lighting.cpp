@@ -39,7 +39,7 @@ LightSample sampleLight(const Light& light, const glm::vec3& p) {
     float dist = std::sqrt(dist2);
     out.distance = dist;
     out.toLight = dist > 0.0f ? d / dist : glm::vec3(0.0f, 1.0f, 0.0f);
-    float atten = 1.0f / std::max(dist2, 1e-4f);
+    float atten = 1.0f / std::max(dist2, 1e-20f);  // guards only 0; no length unit (a 1e-4 floor broke 1 mm scenes)
     if (light.range > 0.0f) {
         float r = dist / light.range;
         float w = std::min(std::max(1.0f - r * r * r * r, 0.0f), 1.0f);

@@ -2,6 +2,7 @@
 // The CPU scene model shared by the GL renderer and the reference path tracer.
 // Static scenes: the glTF node hierarchy is flattened at load time, so every vertex is in world space.
 #include <glm/glm.hpp>
+#include <cmath>
 #include <cstdint>
 #include <limits>
 #include <string>
@@ -122,7 +123,11 @@ struct Scene {
     }
     void computeBounds() {
         bounds = Aabb{};
-        for (const auto& p : parts) for (const auto& v : p.vertices) bounds.extend(v.position);
+        // Finite positions only: one Inf/NaN vertex (possible in a Scene built in code; the loader skips them) would
+        // make the framing camera, the clip planes and the sun's shadow box infinite, and the image black.
+        for (const auto& p : parts)
+            for (const auto& v : p.vertices)
+                if (std::isfinite(v.position.x) && std::isfinite(v.position.y) && std::isfinite(v.position.z)) bounds.extend(v.position);
     }
     const Material& material(int i) const {
         static const Material kDefault{};
