@@ -4,7 +4,7 @@ set -euo pipefail
 PKGS=(build-essential cmake pkg-config
   libglfw3-dev libglm-dev libimgui-dev libstb-dev libtinygltf-dev nlohmann-json3-dev libcli11-dev
   libopenimageio-dev openimageio-tools libosmesa6-dev libegl-dev python3-glad libembree-dev libgtest-dev
-  glslang-tools xvfb xauth imagemagick)
+  glslang-tools xvfb xauth imagemagick clang libclang-rt-14-dev)
 missing=()
 for p in "${PKGS[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
