@@ -97,10 +97,8 @@ protected:
     // Loads and renders the scene; returns the albedo at the centre of layer 1 (after checking every buffer).
     glm::vec3 renderCentreAlbedo(const Scene& loaded) {
         auto scene = std::make_shared<Scene>(loaded);
-        Renderer r;
-        r.setScene(scene);
-        r.resize(32, 32);
-        r.setCamera(selectCamera(*scene, "cam"));
+        auto renderer = rendererFor(scene, 32, 32, "cam");
+        Renderer& r = *renderer;
         for (int i = 0; i < 3; ++i) r.render(Settings{});
         for (const auto& name : r.textures().layerNames()) EXPECT_TRUE(allFinite(r.readLayer(name))) << name;
         EXPECT_GT(meanChannel(r.readFinalRadiance(), 1), 0.0) << "lit by the default sun";

@@ -151,10 +151,8 @@ TEST_F(GLTest, CoplanarOverlappingSurfaces) {
     addQuad(*s, {-20, -20, -5}, {20, -20, -5}, {20, 20, -5}, {-20, 20, -5}, grey);
     addCamera(*s, "cam", {0, 0, 0}, {0, 0, -1}, 60.0f);
     s->computeBounds();
-    Renderer r;
-    r.setScene(s);
-    r.resize(64, 64);
-    r.setCamera(selectCamera(*s, "cam"));
+    auto renderer = rendererFor(s, 64, 64, "cam");
+    Renderer& r = *renderer;
     Settings st;
     st.minSeparation = 0.5f;
     for (int i = 0; i < 4; ++i) r.render(st);
@@ -187,10 +185,8 @@ TEST_F(GLTest, BackFacesCulledUnlessDoubleSided) {
         addQuad(*s, {-5, -5, -2}, {-5, 5, -2}, {5, 5, -2}, {5, -5, -2}, m);  // faces -Z, away from the camera
         addCamera(*s, "cam", {0, 0, 0}, {0, 0, -1}, 60.0f);
         s->computeBounds();
-        Renderer r;
-        r.setScene(s);
-        r.resize(32, 32);
-        r.setCamera(selectCamera(*s, "cam"));
+        auto renderer = rendererFor(s, 32, 32, "cam");
+        Renderer& r = *renderer;
         Settings st;
         st.background = 0.25f;
         st.sunElevation = 10.0f;
@@ -416,10 +412,8 @@ TEST_F(GLTest, OneTriangleAndFullScreenSurface) {
         addQuad(*s, {-50, -50, -3}, {50, -50, -3}, {50, 50, -3}, {-50, 50, -3}, m);  // faces +Z
         addCamera(*s, "cam", {0, 0, 0}, {0, 0, -1}, 60.0f);
         s->computeBounds();
-        Renderer r;
-        r.setScene(s);
-        r.resize(40, 30);
-        r.setCamera(selectCamera(*s, "cam"));
+        auto renderer = rendererFor(s, 40, 30, "cam");
+        Renderer& r = *renderer;
         Settings st;
         st.sunIntensity = E;
         st.sunAzimuth = 0.0f;
@@ -437,10 +431,8 @@ TEST_F(GLTest, OneTriangleAndFullScreenSurface) {
         addTriangle(*s, {-1, -1, -3}, {1, -1, -3}, {0, 1, -3}, {0, 0, 1}, m);
         addCamera(*s, "cam", {0, 0, 0}, {0, 0, -1}, 60.0f);
         s->computeBounds();
-        Renderer r;
-        r.setScene(s);
-        r.resize(40, 40);
-        r.setCamera(selectCamera(*s, "cam"));
+        auto renderer = rendererFor(s, 40, 40, "cam");
+        Renderer& r = *renderer;
         Settings st;
         st.sunIntensity = E;
         st.sunAzimuth = 0.0f;

@@ -180,10 +180,8 @@ TEST_F(GLTest, ExtremeSunIntensityStaysFiniteNeutralAndLinear) {
     auto scene = whiteCorner();
     FloatImage baseline;
     for (float intensity : {1.0f, 1e-5f, 1e5f, 1e6f}) {
-        Renderer r;
-        r.setScene(scene);
-        r.resize(64, 48);
-        r.setCamera(selectCamera(*scene, "cam"));
+        auto renderer = rendererFor(scene, 64, 48, "cam");
+        Renderer& r = *renderer;
         Settings s;
         s.sunIntensity = intensity;
         s.sunAzimuth = 210.0f;

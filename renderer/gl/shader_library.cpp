@@ -68,6 +68,17 @@ struct Preprocessor {
     }
 };
 
+// The info log of a shader (program = false) or a program.
+std::string infoLog(GLuint object, bool program) {
+    GLint len = 0;
+    if (program) glGetProgramiv(object, GL_INFO_LOG_LENGTH, &len);
+    else glGetShaderiv(object, GL_INFO_LOG_LENGTH, &len);
+    std::string log(std::max(len, 1), '\0');
+    if (program) glGetProgramInfoLog(object, len, nullptr, log.data());
+    else glGetShaderInfoLog(object, len, nullptr, log.data());
+    return log.c_str();
+}
+
 std::string stageName(GLenum stage) {
     switch (stage) {
     case GL_VERTEX_SHADER: return "vertex";
@@ -143,14 +154,9 @@ GLuint ShaderLibrary::build(const ProgramDesc& desc, std::map<std::string, int64
             glCompileShader(sh);
             GLint ok = 0;
             glGetShaderiv(sh, GL_COMPILE_STATUS, &ok);
-            if (!ok) {
-                GLint len = 0;
-                glGetShaderiv(sh, GL_INFO_LOG_LENGTH, &len);
-                std::string log(std::max(len, 1), '\0');
-                glGetShaderInfoLog(sh, len, nullptr, log.data());
+            if (!ok)
                 throw ShaderError(*file + ": " + stageName(stage) + " shader failed to compile:\n" +
-                                  mapLog(log.c_str(), pp.names));
-            }
+                                  mapLog(infoLog(sh, false), pp.names));
         }
         GLuint prog = glCreateProgram();
         for (GLuint s : shaders) glAttachShader(prog, s);
@@ -158,10 +164,7 @@ GLuint ShaderLibrary::build(const ProgramDesc& desc, std::map<std::string, int64
         GLint ok = 0;
         glGetProgramiv(prog, GL_LINK_STATUS, &ok);
         if (!ok) {
-            GLint len = 0;
-            glGetProgramiv(prog, GL_INFO_LOG_LENGTH, &len);
-            std::string log(std::max(len, 1), '\0');
-            glGetProgramInfoLog(prog, len, nullptr, log.data());
+            const std::string log = infoLog(prog, true);
             glDeleteProgram(prog);
             std::string what = desc.vertex + (desc.fragment.empty() ? desc.compute : " + " + desc.fragment);
             throw ShaderError(what + ": program failed to link:\n" + std::string(log.c_str()));
