@@ -2,6 +2,7 @@
 // Every scene is built in code; images are small so the suite runs in seconds on two cores.
 #include "renderer/reference/path_tracer.h"
 #include "renderer/scene/lighting.h"
+#include "renderer/scene/procedural.h"
 
 #include <glm/gtc/matrix_transform.hpp>
 #include <gtest/gtest.h>
@@ -15,15 +16,7 @@ namespace {
 
 constexpr float kPi = 3.14159265358979323846f;
 
-int addMaterial(Scene& scene, glm::vec3 albedo, glm::vec3 emission = glm::vec3(0.0f), bool doubleSided = false) {
-    Material m;
-    m.name = "m" + std::to_string(scene.materials.size());
-    m.baseColorFactor = glm::vec4(albedo, 1.0f);
-    m.emissiveFactor = emission;
-    m.doubleSided = doubleSided;
-    scene.materials.push_back(m);
-    return int(scene.materials.size()) - 1;
-}
+using procedural::addMaterial;
 
 // A square of half size h centred at c whose front face (counter-clockwise) looks along n.
 // uv (0,0) at corner c - h*t - h*b, u along t, v along b.
