@@ -153,7 +153,8 @@ TEST_F(GLTest, ReprojectionWithStillCameraReturnsLastOutput) {
 // The gather on a floor under a uniformly lit ceiling (radiance B, height H, gather radius r). Analytic irradiance
 // of the in-radius disk: E = pi B (1 - H^2/r^2). The paper's estimator 2pi/M_used * sum(B cos) over screen-space
 // taps over-weights steep directions, a known bias of normalising by accepted taps (technique.md 6.1): we state
-// the tolerance as [-15%, +60%] of the analytic value (measured: +55% at r = 2H), and require exact linearity in B.
+// the tolerance as [-15%, +35%] of the analytic value (measured: +25% at r = 2H; +55% before the gather's
+// pi * brightest-tap bound), and require exact linearity in B.
 TEST_F(GLTest, GatherUnderUniformlyLitCeilingMatchesAnalyticIrradiance) {
     auto s = std::make_shared<Scene>();
     const glm::vec3 B(0.6f, 0.3f, 0.1f);
@@ -188,7 +189,7 @@ TEST_F(GLTest, GatherUnderUniformlyLitCeilingMatchesAnalyticIrradiance) {
     const double disk = M_PI * (rr * rr - H * H) / (rr * rr);  // irradiance / B of the in-radius disk
     for (int c = 0; c < 3; ++c) {
         EXPECT_GT(sum[c], 0.85 * disk * B[c]) << c;
-        EXPECT_LT(sum[c], 1.60 * disk * B[c]) << c;
+        EXPECT_LT(sum[c], 1.35 * disk * B[c]) << c;
     }
     // Colour ratios are preserved exactly up to R11G11B10 rounding (the estimator is linear in B).
     EXPECT_NEAR(sum[1] / sum[0], B[1] / B[0], 0.03);
