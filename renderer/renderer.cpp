@@ -164,11 +164,12 @@ void Renderer::setupLights(const Settings& s) {
     }
     lightCount_ = int(gpu.size());
     if (gpu.empty()) gpu.emplace_back();
-    glNamedBufferData(lightSsbo_.id(), GLsizeiptr(gpu.size() * sizeof(GpuLight)), gpu.data(), GL_DYNAMIC_DRAW);
     uint64_t key = hashBytes(1469598103934665603ull, gpu.data(), gpu.size() * sizeof(GpuLight));
     key = hashBytes(key, &size, sizeof(size));
     const void* scenePtr = sceneGpu_.get();
     key = hashBytes(key, &scenePtr, sizeof(scenePtr));
+    if (key == shadowKey_) return;  // lights unchanged: the buffer already holds them (static scenes)
+    glNamedBufferData(lightSsbo_.id(), GLsizeiptr(gpu.size() * sizeof(GpuLight)), gpu.data(), GL_DYNAMIC_DRAW);
     shadowKey_ = key;
 }
 

@@ -67,6 +67,13 @@ void expectMatch(const Comparison& c, const char* name) {
     std::printf("%s: mean |ours - reference| = %.5f of mean %.5f (%.1f%%)\n", name, c.meanAbs, c.meanRef, 100 * c.meanAbs / c.meanRef);
 }
 
+// Direct light only, renderer against reference, for one light over the shadow scene.
+void expectDirectLightMatches(const Light& light, const char* name) {
+    Settings s;
+    s.indirect = false;
+    expectMatch(compare(*shadowScene(light), s, name), name);
+}
+
 }  // namespace
 
 TEST_F(GLTest, DirectLightMatchesReferenceSun) {
@@ -74,10 +81,7 @@ TEST_F(GLTest, DirectLightMatchesReferenceSun) {
     l.type = LightType::Directional;
     l.direction = glm::normalize(glm::vec3(0.6f, -1.0f, -0.3f));
     l.intensity = 3.0f;
-    auto scene = shadowScene(l);
-    Settings s;
-    s.indirect = false;
-    expectMatch(compare(*scene, s, "sun"), "sun");
+    expectDirectLightMatches(l, "sun");
 }
 
 TEST_F(GLTest, DirectLightMatchesReferencePoint) {
@@ -86,10 +90,7 @@ TEST_F(GLTest, DirectLightMatchesReferencePoint) {
     l.position = glm::vec3(1.2f, 2.0f, -0.8f);
     l.intensity = 8.0f;
     l.color = glm::vec3(1.0f, 0.9f, 0.8f);
-    auto scene = shadowScene(l);
-    Settings s;
-    s.indirect = false;
-    expectMatch(compare(*scene, s, "point"), "point");
+    expectDirectLightMatches(l, "point");
 }
 
 TEST_F(GLTest, DirectLightMatchesReferenceSpotWithRange) {
@@ -101,10 +102,7 @@ TEST_F(GLTest, DirectLightMatchesReferenceSpotWithRange) {
     l.range = 8.0f;
     l.innerConeAngle = 0.35f;
     l.outerConeAngle = 0.6f;
-    auto scene = shadowScene(l);
-    Settings s;
-    s.indirect = false;
-    expectMatch(compare(*scene, s, "spot"), "spot");
+    expectDirectLightMatches(l, "spot");
 }
 
 // Model only what the scene needs: shadow textures exist only for the light types present.
