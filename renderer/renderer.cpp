@@ -195,7 +195,11 @@ void Renderer::uploadFrameUniforms(const Settings& s) {
     glBindBufferBase(GL_UNIFORM_BUFFER, 0, frameUbo_.id());
 }
 
-void Renderer::prepare(const Settings& s) {
+float Renderer::sceneSize() const { return 2.0f * scene_->bounds.radius(); }
+
+void Renderer::prepare(const Settings& user) { prepareResolved(resolveLengths(user, sceneSize())); }
+
+void Renderer::prepareResolved(const Settings& s) {
     if (width_ <= 0 || height_ <= 0) return;
     PipelineConfig c = makeConfig(s);
     if (!configValid_ || !(c == config_)) historyValid_ = false;  // buffers change meaning
@@ -212,10 +216,11 @@ void Renderer::prepare(const Settings& s) {
     }
 }
 
-void Renderer::render(const Settings& s) {
+void Renderer::render(const Settings& user) {
     timings_.clear();
     if (width_ <= 0 || height_ <= 0) return;  // minimised: nothing to draw, nothing lost
-    prepare(s);
+    const Settings s = resolveLengths(user, sceneSize());  // the passes see lengths in scene units
+    prepareResolved(s);
     FrameContext ctx = makeContext(s);
 
     std::vector<RenderPass*> order;
@@ -284,9 +289,10 @@ FrameContext Renderer::makeContext(const Settings& s) {
                         s.varyTaps ? float(frameIndex_ % 1024) * 0.618034f : 0.0f};
 }
 
-void Renderer::executePass(const std::string& passName, const Settings& s) {
+void Renderer::executePass(const std::string& passName, const Settings& user) {
     if (width_ <= 0 || height_ <= 0) return;
-    prepare(s);
+    const Settings s = resolveLengths(user, sceneSize());
+    prepareResolved(s);
     FrameContext ctx = makeContext(s);
     for (const auto& p : passes_)
         if (passName == p->name()) {

@@ -52,6 +52,8 @@ public:
     void resetHistory() { historyValid_ = false; }
     bool historyValid() const { return historyValid_; }
 
+    // The scene's size (the diagonal of its bounds): what lengths "x scene size" multiply (scene.length_unit = 0).
+    float sceneSize() const;
     // Declares and allocates the textures the settings need without rendering (for memory reports).
     void prepare(const Settings& settings);
     // Renders one frame. Throws gl::ShaderError if a shader has never compiled, std::runtime_error on allocation
@@ -80,6 +82,7 @@ public:
 
 private:
     PipelineConfig makeConfig(const Settings& s) const;
+    void prepareResolved(const Settings& s);  // s with lengths already in scene units
     void setupLights(const Settings& s);
     void uploadFrameUniforms(const Settings& s);
     FrameContext makeContext(const Settings& s);

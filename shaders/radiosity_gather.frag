@@ -1,7 +1,13 @@
 #version 450 core
-// Screen-space radiosity gather over both deep G-buffer layers (Mara et al. 2016, technique.md 1.6):
-// spiral taps, world radius projected to pixels, per-tap mip level, normal tests, the brighter valid layer per
-// tap, and E = 2*pi / M_used * sum(B * cos).
+// Screen-space radiosity gather over both deep G-buffer layers (Mara et al. 2016, technique.md 1.6), with a
+// consistent estimator: the paper's spiral taps, world radius projected to pixels and per-tap mips, but each tap
+// stands for the surface patch its share of the screen disk covers, weighted by its form factor
+//   E(X) = sum_taps B_Y * cos_X * cos_Y * A_Y / (|Y - X|^2 + A_texel / pi)
+// (A_Y = the patch's world area; a texel's area / pi, from the on-axis disk form factor, keeps a near tap bounded),
+// both layers' patches counted, each only if visible from X (a march through the layers' depth intervals, and
+// for layer 2 the crossing of the layer-1 surface in front of it). It converges to the irradiance from the
+// surfaces the two layers hold as taps grow. The covered share of the cosine-weighted hemisphere goes to
+// Gather Coverage (the confidence where the screen has no data).
 #include "common.glsl"
 layout(binding = 4) uniform sampler2DArray uDepth;
 layout(binding = 8) uniform sampler2DArray uNormal;
@@ -16,44 +22,106 @@ uniform int uTapNormalTest;
 uniform int uUseLayer2;
 uniform float uTime;  // varies the pattern per frame when temporally varying taps
 layout(location = 0) out vec3 oIrradiance;
+layout(location = 1) out float oCoverage;
+uniform float uThickness;      // assumed thickness behind a layer-1 surface where layer 2 does not bound it
+uniform int uVisibilitySteps;  // march steps per tap (0 = no visibility test)
 
-// One layer's contribution of a tap: its radiance B and E = B * cos (both zero beyond the radius), and whether
-// the tap counts (w).
-// h0 = the tap pixel's homogeneous world position without the depth term; adding (2d - 1) * hz gives depth d
-// (worldFromDepth with the matrix product distributed, shared by the two layers). (2d - 1) is formed first:
-// folding -hz into h0 cancels catastrophically when near/far are extreme (hz huge).
-void tapLayer(int j, ivec2 T, int m, vec4 h0, vec4 hz, vec3 X, vec3 nX, float r2, out vec3 B, out vec3 E, out float w) {
-    B = vec3(0.0);
+// Eye depth (distance along the view axis) of a world point.
+float eyeZ(vec3 P) { return dot(P - uCameraPos.xyz, uCameraForward.xyz); }
+
+// World area of the surface seen through one pixel at Y (normal nY).
+float pixelArea(vec3 Y, vec3 nY) {
+    vec3 c = Y - uCameraPos.xyz;
+    float f2 = uClip.z * uClip.z;
+    if (uCameraPos.w > 0.5) {
+        float dist = max(length(c), 1e-30);
+        float z = dot(c, uCameraForward.xyz);
+        float cosCam = max(abs(dot(nY, c)) / dist, 1e-3);
+        return z * z * z / (dist * f2 * cosCam);
+    }
+    return 1.0 / (f2 * max(abs(dot(nY, uCameraForward.xyz)), 1e-3));
+}
+
+// Screen pixel and eye depth of a world point.
+vec2 toPixel(vec3 P) {
+    vec4 c = uViewProj * vec4(P, 1.0);
+    return (c.xy / c.w * 0.5 + 0.5) * uViewport.xy;
+}
+
+int mipFor(float h) { return clamp(findMSB(max(int(h), 1)) - uLogMaxOffset, uMinMip, uMaxMip); }
+
+// True if some point of the segment X -> Y (pixel distance hY on screen) lies inside a surface: behind layer 1 by
+// less than the surface's thickness (the interval up to layer 2, at most uThickness).
+bool marchOccluded(vec3 X, vec3 Y, float hY, float jitter, ivec2 size, bool twoLayers) {
+    for (int k = 0; k < uVisibilitySteps; ++k) {
+        float t = (float(k) + jitter) / float(uVisibilitySteps);
+        vec3 P = mix(X, Y, t);
+        ivec2 q = ivec2(toPixel(P));
+        if (any(lessThan(q, ivec2(0))) || any(greaterThanEqual(q, size))) continue;
+        int m = mipFor(t * hY);
+        ivec2 T = q >> m;
+        float d1 = texelFetch(uDepth, ivec3(T, 0), m).r;
+        if (isSky(d1)) continue;
+        float z1 = eyeDepthCurrent(d1);
+        float thick = uThickness;
+#ifndef DEEPGI_SINGLE_LAYER
+        if (twoLayers) {
+            float d2 = texelFetch(uDepth, ivec3(T, 1), m).r;
+            if (!isSky(d2)) thick = min(thick, eyeDepthCurrent(d2) - z1);
+        }
+#endif
+        float zP = eyeZ(P);
+        float eps = 0.05 * uThickness + 2e-3 * z1;
+        if (zP > z1 + eps && zP < z1 + thick) return true;
+    }
+    return false;
+}
+
+// One layer of a tap: position Y, normal nY, and the contribution of its patch (irradiance, covered projected
+// solid angle / pi). dA = the screen area (pixels^2) the tap stands for.
+void tapLayer(int j, ivec2 T, int m, vec4 h0, vec4 hz, vec3 X, vec3 nX, float r2, float dA,
+              out vec3 Y, out vec3 nY, out bool valid, out vec3 E, out float cover) {
     E = vec3(0.0);
-    w = 0.0;
+    cover = 0.0;
+    valid = false;
+    nY = vec3(0.0, 0.0, 1.0);
     float dj = texelFetch(uDepth, ivec3(T, j), m).r;
+    Y = X;
     if (isSky(dj)) return;
     vec4 hw = h0 + (dj * 2.0 - 1.0) * hz;
-    vec3 v = hw.xyz / hw.w - X;
+    Y = hw.xyz / hw.w;
+    valid = true;
+    vec3 v = Y - X;
     float vv = dot(v, v);
-    if (vv <= 1e-12) return;
+    if (vv <= 1e-20 * max(dot(X, X), 1e-20) || vv >= r2) return;
     vec3 wh = v * inversesqrt(vv);
     float cosX = dot(wh, nX);
-    bool ok = cosX > 0.0;
-    if (ok && uTapNormalTest != 0) ok = dot(-wh, octDecode(texelFetch(uNormal, ivec3(T, j), m).rg)) > 0.01;
-    if (ok && vv < r2) {
-        B = texelFetch(uRadiance, ivec3(T, j), m).rgb;
-        E = B * cosX;
-    }
-    w = ok ? 1.0 : 0.0;  // a valid tap beyond the radius counts as used but dark (as in G3D)
+    if (cosX <= 0.0) return;
+    nY = octDecode(texelFetch(uNormal, ivec3(T, j), m).rg);
+    float cosY = dot(-wh, nY);
+    if (uTapNormalTest != 0 && cosY <= 0.0) return;
+    cosY = max(cosY, 0.0);
+    float a = pixelArea(Y, nY);
+    // Solid angle of the patch: A * cosY / d^2, with the on-axis disk's A_texel / pi added to d^2 for the mip
+    // texel's own area so that a tap next to X stays bounded (vanishing as the texel does: no bias in the limit).
+    float omega = dA * a * cosY / (vv + float(1 << (2 * m)) * a / PI);
+    cover = cosX * omega / PI;
+    E = texelFetch(uRadiance, ivec3(T, j), m).rgb * cosX * omega;
 }
 
 void main() {
     ivec2 pix = ivec2(gl_FragCoord.xy);
     float d = texelFetch(uDepth, ivec3(pix, 0), 0).r;
-    if (isSky(d)) { oIrradiance = vec3(0.0); return; }
+    if (isSky(d)) { oIrradiance = vec3(0.0); oCoverage = 0.0; return; }
     vec3 X = worldFromDepth(vec2(pix) + 0.5, d, uInvViewProj);
     vec3 nX = octDecode(texelFetch(uNormal, ivec3(pix, 0), 0).rg);
     float z = eyeDepthCurrent(d);
-    float rss = uCameraPos.w > 0.5 ? uClip.z * uRadius / max(z, 1e-6) : uClip.z * uRadius;
+    float rss = uCameraPos.w > 0.5 ? uClip.z * uRadius / max(z, 1e-30) : uClip.z * uRadius;
+    rss = min(rss, 4.0 * max(uViewport.x, uViewport.y));  // beyond the screen no tap finds data
     // Per-pixel rotation and radial jitter (G3D's hash), optionally varied per frame.
     float phi = float((3 * pix.x) ^ (pix.y + pix.x * pix.y)) * 10.0 + uTime;
     float jitter = fract(sin(gl_FragCoord.x * 100.0 + gl_FragCoord.y + uTime) * 1e5 + sin(gl_FragCoord.y * 1000.0) * 1000.0) * 0.8 + 0.1;
+    float marchJitter = fract(jitter * 7.31 + 0.5) * 0.8 + 0.1;
     ivec2 size = ivec2(uViewport.xy);
     float r2 = uRadius * uRadius;
     // worldFromDepth(p, d) = (c + p.x * cx + p.y * cy + (2d - 1) * hz).xyz / w.
@@ -61,36 +129,58 @@ void main() {
     vec4 c = uInvViewProj[3] - uInvViewProj[0] - uInvViewProj[1];
     bool twoLayers = uUseLayer2 != 0;
     vec3 sum = vec3(0.0);
-    vec3 brightest = vec3(0.0);  // per channel, the largest radiance among the taps that contribute
-    float used = 0.0;
+    float covered = 0.0;
+    // Tap radii are uniform in [0, rss]: a tap at h stands for 2*pi*h*rss/N pixels^2 of the disk.
+    float areaPerH = 2.0 * PI * rss / float(uNumSamples);
     for (int i = 0; i < uNumSamples; ++i) {
         float alpha = (float(i) + jitter) / float(uNumSamples);
         float theta = alpha * uSpiralTurns * 6.28 + phi;
         float h = alpha * rss;
-        ivec2 Y = pix + ivec2(h * vec2(cos(theta), sin(theta)));
-        if (any(lessThan(Y, ivec2(0))) || any(greaterThanEqual(Y, size))) continue;  // off-screen: no data
-        int m = clamp(findMSB(int(h)) - uLogMaxOffset, uMinMip, uMaxMip);
-        ivec2 T = Y >> m;
-        // xy at full resolution, z from the coarse level, as G3D does. Placing the tap at its sample's source pixel
-        // instead (sourcePixel(), as the AO pass must) changed the indirect error by < 0.001 (docs/BENCHMARKS.md).
-        vec2 P = vec2(Y) + 0.5;
+        ivec2 Yp = pix + ivec2(h * vec2(cos(theta), sin(theta)));
+        if (any(lessThan(Yp, ivec2(0))) || any(greaterThanEqual(Yp, size))) continue;  // off-screen: no data
+        if (Yp == pix) continue;
+        int m = mipFor(h);
+        ivec2 T = Yp >> m;
+        // xy at full resolution, z from the coarse level, as G3D does.
+        vec2 P = vec2(Yp) + 0.5;
         vec4 h0 = c + P.x * cx + P.y * cy;
-        vec3 B0, E0, B1 = vec3(0.0), E1 = vec3(0.0);
-        float w0, w1 = 0.0;
-        tapLayer(0, T, m, h0, hz, X, nX, r2, B0, E0, w0);
+        float dA = areaPerH * h;
+        vec3 Y0, n0, E0;
+        bool v0;
+        float c0;
+        tapLayer(0, T, m, h0, hz, X, nX, r2, dA, Y0, n0, v0, E0, c0);
+        if (c0 > 0.0 && marchOccluded(X, Y0, h, marchJitter, size, twoLayers)) { E0 = vec3(0.0); c0 = 0.0; }
+        sum += E0;
+        covered += c0;
 #ifndef DEEPGI_SINGLE_LAYER  // defined when layer 2 is off: no layer-2 code at all
-        if (twoLayers) tapLayer(1, T, m, h0, hz, X, nX, r2, B1, E1, w1);
+        if (twoLayers && v0) {
+            vec3 Y1, n1, E1;
+            bool v1;
+            float c1;
+            tapLayer(1, T, m, h0, hz, X, nX, r2, dA, Y1, n1, v1, E1, c1);
+            if (c1 > 0.0) {
+                // Layer 2 lies behind the layer-1 surface Y0 of this pixel: X sees it only if the segment does not
+                // pass through that surface where it crosses its plane (a thin wall, the pillar in front).
+                float sx = dot(X - Y0, n0), sy = dot(Y1 - Y0, n0);
+                bool blocked = false;
+                if (sx > 0.0 && sy < 0.0) {
+                    vec3 Q = mix(X, Y1, sx / (sx - sy));
+                    ivec2 q = ivec2(toPixel(Q));
+                    if (all(greaterThanEqual(q, ivec2(0))) && all(lessThan(q, size))) {
+                        int mq = mipFor(length(vec2(q - pix)));
+                        float dq = texelFetch(uDepth, ivec3(q >> mq, 0), mq).r;
+                        blocked = !isSky(dq) && abs(eyeDepthCurrent(dq) - eyeZ(Q)) < uThickness + 0.02 * eyeZ(Q);
+                    }
+                }
+                if (!blocked && marchOccluded(X, Y1, h, marchJitter, size, twoLayers)) blocked = true;
+                if (!blocked) {
+                    sum += E1;
+                    covered += c1;
+                }
+            }
+        }
 #endif
-        float a0 = w0 * dot(E0, E0) + w0;
-        float a1 = w1 * dot(E1, E1) + w1;
-        bool pick0 = a0 > a1;
-        sum += pick0 ? E0 : E1;
-        brightest = max(brightest, pick0 ? B0 : B1);
-        used += pick0 ? w0 : w1;
     }
-    // Irradiance from surroundings no brighter than `brightest` is at most pi * brightest. The 2pi/M_used
-    // estimator can exceed that where the accepted taps are steep (a few percent to +55%); with full multi-bounce
-    // feedback that is a loop gain rho * k above 1 and the radiance runs away to the format maximum. Bounded
-    // this way, the feedback is a contraction for albedo < 1 (tests/test_hard_stability.cpp, LongRun...).
-    oIrradiance = sanitizeR11G11B10(min(2.0 * PI * sum / (used + 1e-5), PI * brightest), gl_FragCoord.xy);
+    oIrradiance = sanitizeR11G11B10(sum, gl_FragCoord.xy);
+    oCoverage = clamp(covered, 0.0, 1.0);
 }

@@ -17,6 +17,7 @@ FloatImage renderAO(const std::shared_ptr<Scene>& s, Renderer& r) {
     r.setCamera(selectCamera(*s, "cam"));
     Settings st;
     st.aoEnabled = true;
+    st.lengthUnit = 1.0f;  // the lengths below are in scene units
     st.radius = 1.0f;
     st.numSamples = 30;
     st.varyTaps = false;

@@ -87,6 +87,7 @@ TEST_F(GLTest, DegenerateTrianglesAndNormalsRenderFinite) {
     bad->bounds = clean->bounds;  // computeBounds() would take in the Inf vertices: a camera/shadow problem of its own
     const Camera cam = selectCamera(*clean, "front");
     Settings s;
+    s.lengthUnit = 1.0f;  // the lengths below are in scene units
     s.radius = 1.5f;
     s.minSeparation = 0.2f;
     Renderer r;
@@ -154,6 +155,7 @@ TEST_F(GLTest, CoplanarOverlappingSurfaces) {
     auto renderer = rendererFor(s, 64, 64, "cam");
     Renderer& r = *renderer;
     Settings st;
+    st.lengthUnit = 1.0f;  // the lengths below are in scene units
     st.minSeparation = 0.5f;
     for (int i = 0; i < 4; ++i) r.render(st);
     expectAllBuffersFinite(r, "coplanar");
@@ -213,6 +215,7 @@ TEST_F(GLTest, BackFacesCulledUnlessDoubleSided) {
 TEST_F(GLTest, CameraInsideGeometryOrOnASurface) {
     auto scene = cornellScene();
     Settings s;
+    s.lengthUnit = 1.0f;  // the lengths below are in scene units
     s.radius = 1.5f;
     s.minSeparation = 0.2f;
     struct View { const char* name; Camera cam; };
@@ -245,6 +248,7 @@ namespace {
 // without history depends only on the camera; what differs from it is history.
 Settings motionSettings() {
     Settings s;
+    s.lengthUnit = 1.0f;  // the lengths below are in scene units
     s.radius = 1.5f;
     s.minSeparation = 0.2f;
     s.damping = 1.0f;
@@ -352,6 +356,7 @@ TEST_F(GLTest, GrazingAngleFiniteWithoutSmearing) {
     addSun(*s, {0.3f, -1.0f, -0.5f}, 3.0f);
     s->computeBounds();
     Settings st = motionSettings();
+    st.lengthUnit = 1.0f;  // the lengths below are in scene units
     st.radius = 2.0f;
     Renderer r;
     r.setScene(s);

@@ -10,6 +10,7 @@ TEST_F(GLTest, PipelineRendersFiniteImageWithColourBleeding) {
     auto renderer = rendererFor(scene, 160, 120, "front");
     Renderer& r = *renderer;
     Settings s;
+    s.lengthUnit = 1.0f;  // the lengths below are in scene units
     s.radius = 1.5f;
     s.minSeparation = 0.2f;
     for (int i = 0; i < 12; ++i) r.render(s);

@@ -56,6 +56,19 @@ const std::vector<SettingInfo>& settingTable() {
     return table;
 }
 
+float lengthUnit(const Settings& s, float sceneSize) {
+    if (s.lengthUnit > 0.0f) return s.lengthUnit;
+    return std::isfinite(sceneSize) && sceneSize > 0.0f ? sceneSize : 1.0f;
+}
+
+Settings resolveLengths(const Settings& s, float sceneSize) {
+    const double unit = lengthUnit(s, sceneSize);
+    Settings out = s;
+    for (const auto& info : settingTable())
+        if (std::string(info.unit) == kSceneSizeUnit) info.set(out, info.get(s) * unit);
+    return out;
+}
+
 const SettingInfo* findSetting(const std::string& key) {
     for (const auto& s : settingTable()) if (key == s.key) return &s;
     return nullptr;

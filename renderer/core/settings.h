@@ -46,6 +46,13 @@ void applySettingsJson(Settings& s, const nlohmann::json& j, const std::string& 
 void loadSettingsFile(Settings& s, const std::string& path);
 void saveSettingsFile(const Settings& s, const std::string& path);
 
+// The unit of lengths relative to the scene, as settings.def writes it.
+inline constexpr const char* kSceneSizeUnit = "x scene size";
+// The scene units per relative length: scene.length_unit, or sceneSize when it is 0.
+float lengthUnit(const Settings& s, float sceneSize);
+// A copy with every "x scene size" length multiplied out into scene units (what the passes use).
+Settings resolveLengths(const Settings& s, float sceneSize);
+
 // Presets "performance", "balanced", "quality" live in assets/presets/<name>.json.
 std::vector<std::string> presetNames();
 void applyPreset(Settings& s, const std::string& name);

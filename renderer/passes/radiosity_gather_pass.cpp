@@ -17,6 +17,10 @@ void RadiosityGatherPass::declare(const PipelineConfig&, std::vector<TextureDecl
     out.push_back({"Output Radiance", {"Output Radiance"}, GL_R11F_G11F_B10F, GL_TEXTURE_2D, SizeRule::Screen, 1,
                    MemoryGroup::Radiosity, Visualize::Radiance,
                    "Indirect irradiance at layer 1: raw gather, then blurred and temporally blended in place"});
+    out.push_back({"Gather Coverage", {"Gather Coverage"}, GL_R8, GL_TEXTURE_2D, SizeRule::Screen, 1, MemoryGroup::Extra,
+                   Visualize::Color,
+                   "Share of the cosine-weighted hemisphere the screen's visible surfaces covered in the gather (1 = all light "
+                   "came from the screen; the rest has to come from elsewhere)"});
 }
 
 void RadiosityGatherPass::execute(FrameContext& ctx) {
@@ -35,10 +39,13 @@ void RadiosityGatherPass::execute(FrameContext& ctx) {
     setUniform(prog, "uTapNormalTest", s.tapNormalTest ? 1 : 0);
     setUniform(prog, "uUseLayer2", ctx.config.layer2 ? 1 : 0);
     setUniform(prog, "uTime", s.varyTaps ? ctx.time : 0.0f);
+    setUniform(prog, "uThickness", s.minSeparation);
+    setUniform(prog, "uVisibilitySteps", s.visibilitySteps);
     glBindTextureUnit(4, ctx.textures.id("Depth"));
     glBindTextureUnit(8, ctx.textures.id("Normal"));
     glBindTextureUnit(11, ctx.textures.id("Input Radiance"));
-    GLuint fbo = ctx.fbos.get({{GL_COLOR_ATTACHMENT0, ctx.textures.id("Output Radiance")}}, "output radiance");
+    GLuint fbo = ctx.fbos.get({{GL_COLOR_ATTACHMENT0, ctx.textures.id("Output Radiance")},
+                               {GL_COLOR_ATTACHMENT1, ctx.textures.id("Gather Coverage")}}, "output radiance");
     ctx.drawFullscreen(prog, fbo, ctx.width, ctx.height);
 }
 
