@@ -1,7 +1,8 @@
 // deepgi bench: speed against error over a sweep of configurations, against path-traced references.
 #include "app/command.h"
 #include "app/options.h"
-#include "renderer/bench/bench.h"
+#include "bench/bench.h"
+#include "bench/hard_suite.h"
 
 #include <cstdio>
 #include <sstream>
@@ -15,9 +16,63 @@ struct BenchArgs {
     std::string wholeSize = "640x360";
     std::string configs;
     bool list = false;
+    std::string suite = "standard";
+    std::string hardScenes, scales = "1,0.001,1000";
+    int oneBounceSpp = 1024;
+    bool noPath = false;
     SettingsOptions settings;
     bench::BenchOptions o;
 };
+
+std::vector<std::string> splitList(const std::string& text) {
+    std::vector<std::string> out;
+    std::stringstream ss(text);
+    std::string item;
+    while (std::getline(ss, item, ','))
+        if (!item.empty()) out.push_back(item);
+    return out;
+}
+
+int runHard(BenchArgs& a, const CLI::App& sub) {
+    bench::HardOptions h;
+    parseSize(a.size, h.width, h.height);
+    h.scenes = splitList(a.hardScenes);
+    h.scales.clear();
+    for (const auto& s : splitList(a.scales)) {
+        size_t used = 0;
+        double v = 0.0;
+        try {
+            v = std::stod(s, &used);
+        } catch (const std::exception&) {
+            used = 0;
+        }
+        if (used != s.size() || !(v == 1.0 || v == 0.001 || v == 1000.0))
+            throw std::runtime_error("bench: --scales takes 1, 0.001 and 1000 (the generated scenes), got '" + s + "'");
+        h.scales.push_back(v);
+    }
+    if (h.scales.empty() || h.scales.front() != 1.0) h.scales.insert(h.scales.begin(), 1.0);  // the scale-1 run is the comparison
+    h.configs = splitList(a.configs);
+    if (sub.count("--frames")) h.frames = a.o.frames;
+    if (sub.count("--timed-frames")) h.timedFrames = a.o.timedFrames;
+    h.timedFrames = std::min(h.timedFrames, h.frames);
+    if (sub.count("--spp")) h.spp = a.o.spp;
+    if (sub.count("--bounces")) h.bounces = a.o.bounces;
+    if (sub.count("--path-spp")) h.pathSpp = a.o.pathSpp;
+    h.oneBounceSpp = a.oneBounceSpp;
+    h.cameraPath = !a.noPath;
+    h.outDir = sub.count("--out") ? a.o.outDir : "out/bench_hard";
+    h.cacheDir = a.o.cacheDir;
+    h.shaderDir = a.o.shaderDir;
+    h.context = a.o.context;
+    h.base = a.settings.build();
+    h.quiet = a.o.quiet;
+    const bench::HardResult r = bench::runHardSuite(h);
+    std::printf("%s\n", r.text.c_str());
+    std::printf("references:\n");
+    for (const auto& l : r.referenceLines) std::printf("  %s\n", l.c_str());
+    std::printf("wrote %s/results_hard.md, results_hard.csv, grid_*.png\n", h.outDir.c_str());
+    return 0;
+}
 
 CommandRegistrar registrar("bench", "Speed against error: sweep configurations against path-traced references", 35, [](CLI::App& sub) {
     auto a = std::make_shared<BenchArgs>();
@@ -32,6 +87,13 @@ CommandRegistrar registrar("bench", "Speed against error: sweep configurations a
     sub.add_option("--path-spp", a->o.pathSpp, "Samples per pixel of the path references")->capture_default_str()->check(CLI::Range(1, 1 << 20));
     sub.add_option("--configs", a->configs, "Comma-separated configurations to run (default: all; see --list)");
     sub.add_flag("--list", a->list, "List the configurations and exit");
+    sub.add_option("--suite", a->suite, "standard (atrium and Cornell box sweep) or hard (the hard GI scenes of assets/hard: "
+                                        "indirect, one-bounce, leak, furnace, scale figures; default configs: default)")
+        ->capture_default_str()->check(CLI::IsMember({"standard", "hard"}));
+    sub.add_option("--hard-scenes", a->hardScenes, "--suite hard: comma-separated scenes (offscreen_light, thin_wall, hidden_emitter, sun_patch, furnace; default all)");
+    sub.add_option("--scales", a->scales, "--suite hard: comma-separated scales among 1, 0.001, 1000")->capture_default_str();
+    sub.add_option("--one-bounce-spp", a->oneBounceSpp, "--suite hard: samples per pixel of the 1-bounce references")->capture_default_str()->check(CLI::Range(4, 1 << 20));
+    sub.add_flag("--no-path", a->noPath, "--suite hard: skip the camera path");
     sub.add_option("--whole-frame-size", a->wholeSize, "Size of the whole-frame check of the first scene, balanced preset (0x0 = skip)")->capture_default_str();
     sub.add_option("--out", a->o.outDir, "Output folder")->capture_default_str();
     sub.add_option("--cache", a->o.cacheDir, "Reference cache folder (default: OUT/cache)");
@@ -40,7 +102,8 @@ CommandRegistrar registrar("bench", "Speed against error: sweep configurations a
     sub.add_flag("--cpu-time", a->o.cpuTiming, "Time passes by this thread's CPU time with llvmpipe on one thread (LP_NUM_THREADS=0): robust when other processes share the cores");
     sub.add_option("--context", a->o.context, "OpenGL context: osmesa (llvmpipe) or egl (headless EGL: Mesa surfaceless or a GPU)")->capture_default_str();
     a->settings.add(sub);
-    return [a]() {
+    return [a, &sub]() {
+        if (a->suite == "hard") return runHard(*a, sub);
         if (a->list) {
             for (const auto& c : bench::defaultConfigs()) std::printf("%-20s %s\n", c.name.c_str(), c.description.c_str());
             return 0;

@@ -4,7 +4,7 @@
 // rasterises in the calling thread, so other processes' load does not count).
 #include "app/command.h"
 #include "app/options.h"
-#include "renderer/bench/metrics.h"
+#include "bench/metrics.h"
 #include "renderer/gl/headless_context.h"
 #include "renderer/renderer.h"
 #include "renderer/scene/gltf_loader.h"

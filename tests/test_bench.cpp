@@ -1,7 +1,9 @@
 // deepgi bench: metric functions on known images, the Pareto front, the reference cache and a tiny bench run.
-#include "renderer/bench/bench.h"
-#include "renderer/bench/canvas.h"
-#include "renderer/bench/metrics.h"
+#include "bench/bench.h"
+#include "bench/canvas.h"
+#include "bench/gi_figures.h"
+#include "bench/hard_suite.h"
+#include "bench/metrics.h"
 #include "renderer/scene/gltf_loader.h"
 
 #include <gtest/gtest.h>
@@ -76,6 +78,114 @@ TEST(BenchMetrics, ParetoFront) {
     EXPECT_EQ(paretoFront(p), (std::vector<int>{0, 2, 4}));
     EXPECT_TRUE(paretoFront({}).empty());
     EXPECT_EQ(paretoFront({{1, 1}, {1, 1}}), (std::vector<int>{0}));
+}
+
+// ---- the GI figures of ../shared/docs/gi-accuracy.md on synthetic images with known answers ----
+
+TEST(GiFigures, LuminanceIsRec709) {
+    FloatImage img{3, 1, 3, {1, 0, 0, 0, 1, 0, 0, 0, 1}};
+    const LumaImage l = luminance(img);
+    EXPECT_NEAR(l.v[0], 0.2126, 1e-7);
+    EXPECT_NEAR(l.v[1], 0.7152, 1e-7);
+    EXPECT_NEAR(l.v[2], 0.0722, 1e-7);
+}
+
+TEST(GiFigures, RelativeL1IsOverFourByFourBlockMeans) {
+    const FloatImage ref = constant(8, 8, 1.0f);
+    // +-0.5 in a checkerboard: every 4x4 block keeps its mean, so per-pixel noise scores 0.
+    FloatImage noisy = ref;
+    for (int y = 0; y < 8; ++y)
+        for (int x = 0; x < 8; ++x)
+            for (int c = 0; c < 3; ++c) noisy.at(x, y, c) = (x + y) % 2 ? 1.5f : 0.5f;
+    EXPECT_NEAR(relativeL1(noisy, ref), 0.0, 1e-12);
+    EXPECT_NEAR(relativeL1(noisy, ref, 1), 0.5, 1e-12);  // per pixel it is 50 %
+    // One of the four blocks 40 % too bright: sum |diff| / sum ref = 0.4 / 4.
+    FloatImage block = ref;
+    for (int y = 0; y < 4; ++y)
+        for (int x = 4; x < 8; ++x)
+            for (int c = 0; c < 3; ++c) block.at(x, y, c) = 1.4f;
+    EXPECT_NEAR(relativeL1(block, ref), 0.1, 1e-6);
+    EXPECT_NEAR(ratioOfMeans(block, ref), 1.1, 1e-6);
+    // A global factor: relL1 = |k - 1|, ratio = k.
+    EXPECT_NEAR(relativeL1(constant(8, 8, 2.83f), ref), 1.83, 1e-6);
+    EXPECT_NEAR(ratioOfMeans(constant(8, 8, 2.83f), ref), 2.83, 1e-6);
+    // Black: relL1 1, ratio 0 (the off-screen case's "1.00 / 0.00").
+    EXPECT_NEAR(relativeL1(constant(8, 8, 0.0f), ref), 1.0, 1e-12);
+    EXPECT_NEAR(ratioOfMeans(constant(8, 8, 0.0f), ref), 0.0, 1e-12);
+}
+
+TEST(GiFigures, RelativeL1WeighsChannelsByLuminanceAndHandlesPartialBlocks) {
+    // Reference green 1, test red 1: block means 0.7152 vs 0.2126.
+    FloatImage g = constant(4, 4, 0.0f), r = constant(4, 4, 0.0f);
+    for (int y = 0; y < 4; ++y)
+        for (int x = 0; x < 4; ++x) {
+            g.at(x, y, 1) = 1.0f;
+            r.at(x, y, 0) = 1.0f;
+        }
+    EXPECT_NEAR(relativeL1(r, g), (0.7152 - 0.2126) / 0.7152, 1e-6);
+    EXPECT_NEAR(ratioOfMeans(r, g), 0.2126 / 0.7152, 1e-6);
+    // 6x6: blocks of 4x4, 2x4, 4x2 and 2x2 pixels, each one mean. +0.8 on the 2x2 corner block only: 0.8 / 4.
+    const FloatImage ref = constant(6, 6, 1.0f);
+    FloatImage t = ref;
+    for (int y = 4; y < 6; ++y)
+        for (int x = 4; x < 6; ++x)
+            for (int c = 0; c < 3; ++c) t.at(x, y, c) = 1.8f;
+    EXPECT_NEAR(relativeL1(t, ref), 0.2, 1e-6);
+    EXPECT_EQ(blockMeans(luminance(ref)).width, 2);
+}
+
+TEST(GiFigures, UndefinedWithoutReferenceLightAndSizeChecked) {
+    EXPECT_TRUE(std::isnan(relativeL1(constant(4, 4, 1.0f), constant(4, 4, 0.0f))));
+    EXPECT_TRUE(std::isnan(ratioOfMeans(constant(4, 4, 1.0f), constant(4, 4, 0.0f))));
+    EXPECT_THROW(relativeL1(constant(4, 4, 1), constant(4, 8, 1)), std::invalid_argument);
+}
+
+TEST(GiFigures, LeakMeanAndMax) {
+    FloatImage img = constant(10, 10, 0.0f);
+    for (int c = 0; c < 3; ++c) {
+        img.at(3, 4, c) = 0.5f;
+        img.at(9, 9, c) = 0.25f;
+    }
+    const Leak k = leak(img);
+    EXPECT_NEAR(k.max, 0.5, 1e-12);
+    EXPECT_NEAR(k.mean, 0.75 / 100.0, 1e-12);
+    EXPECT_EQ(leak(constant(5, 5, 0.0f)).max, 0.0);
+}
+
+TEST(GiFigures, FurnaceDeviationIsPerPixelIncludingBorders) {
+    // Exact 0.2; the top row (a screen border) 5 % dark, one corner pixel 20 % bright.
+    FloatImage img = constant(10, 5, 0.2f);
+    for (int x = 0; x < 10; ++x)
+        for (int c = 0; c < 3; ++c) img.at(x, 0, c) = 0.19f;
+    for (int c = 0; c < 3; ++c) img.at(9, 4, c) = 0.24f;
+    const Deviation d = deviationFromConstant(img, 0.2);
+    EXPECT_NEAR(d.maxRel, 0.2, 1e-6);
+    EXPECT_NEAR(d.meanRel, (10 * 0.05 + 0.2) / 50.0, 1e-6);
+    EXPECT_NEAR(d.ratio, (10 * 0.19 + 39 * 0.2 + 0.24) / 50.0 / 0.2, 1e-6);
+    EXPECT_THROW(deviationFromConstant(img, 0.0), std::invalid_argument);
+}
+
+TEST(GiFigures, NoiseFloorIsQuarterSampleDifferenceOverRootFive) {
+    const FloatImage a = constant(8, 8, 1.1f), b = constant(8, 8, 1.0f);
+    EXPECT_NEAR(noiseFloor(a, b), 0.1 / std::sqrt(5.0), 1e-6);
+}
+
+TEST(HardSuite, FloorReferenceIsCachedWithItsFloor) {
+    Scene scene = loadGltf(std::string(DEEPGI_ASSET_DIR) + "/hard/furnace/furnace.gltf");
+    if (!scene.bounds.valid()) scene.computeBounds();
+    const Camera cam = selectCamera(scene, "inside");
+    const fs::path dir = tempDir("floor");
+    const FloorReference a = floorReference(scene, cam, Settings{}, 16, 8, 8, 8, dir.string(), true);
+    EXPECT_FALSE(a.cacheHit);
+    EXPECT_GT(a.floorFinal, 0.0);
+    // The furnace's truth is 0.2; 8 bounces of albedo 0.5 reach 0.2 * (1 - 0.5^9) and the mean sits near it.
+    EXPECT_NEAR(ratioOfMeans(a.final, constantImage(16, 8, 0.2f)), 1.0 - std::pow(0.5, 9), 0.05);
+    const FloorReference b = floorReference(scene, cam, Settings{}, 16, 8, 8, 8, dir.string(), true);
+    EXPECT_TRUE(b.cacheHit);
+    EXPECT_EQ(a.final.pixels, b.final.pixels);
+    EXPECT_DOUBLE_EQ(a.floorIndirect, b.floorIndirect);
+    EXPECT_THROW(floorReference(scene, cam, Settings{}, 16, 8, 2, 8, dir.string(), true), std::invalid_argument);
+    fs::remove_all(dir);
 }
 
 TEST(BenchCanvas, TextAndHeat) {

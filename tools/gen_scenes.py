@@ -240,12 +240,13 @@ def sandstone_wall_texture(size=256):
 
 
 class Material:
-    def __init__(self, name, color, texture=None, uv_scale=1.0, double_sided=False):
+    def __init__(self, name, color, texture=None, uv_scale=1.0, double_sided=False, emission=None):
         self.name = name
         self.color = color  # linear RGB
         self.texture = texture  # PNG file name next to the .gltf, or None
         self.uv_scale = uv_scale  # metres per texture repeat for planar-mapped UVs
         self.double_sided = double_sided
+        self.emission = emission  # None or (linear RGB factor, strength): radiance = factor * strength
 
 
 class Primitive:
@@ -268,6 +269,8 @@ class SceneBuilder:
         self.cameras = []  # (name, eye, target, yfov)
         self.sun = None  # (intensity, direction)
         self.solids = []  # (name, [triangle position triples]) checked for watertightness
+        self.camera_path = None  # hard scenes: camera keys written to path.json
+        self.clip = {}  # camera name -> (znear, zfar) where the default (0.05, infinite) is not wanted
         self._solid = None
 
     def material(self, name, color, **kw):
@@ -378,8 +381,10 @@ class SceneBuilder:
         if "bottom" not in skip:
             self.polygon(material, [(x, y0, z) for x, z in ring], (0.0, -1.0, 0.0))
 
-    def camera(self, name, eye, target, yfov):
+    def camera(self, name, eye, target, yfov, clip=None):
         self.cameras.append((name, eye, target, yfov))
+        if clip is not None:
+            self.clip[name] = clip
 
     # -------------------------------------------------------------------------------------- checks
 
@@ -495,8 +500,9 @@ class SceneBuilder:
 
     # -------------------------------------------------------------------------------------- glTF output
 
-    def write(self, out_dir, textures):
-        """Writes <out_dir>/<name>.gltf and .bin; textures: {file name: (w, h, rows)} written as PNG."""
+    def write(self, out_dir, textures, scale=1.0):
+        """Writes <out_dir>/<name>.gltf and .bin; textures: {file name: (w, h, rows)} written as PNG. `scale`
+        multiplies every length (positions, camera positions and clip planes) at output, after the checks."""
         os.makedirs(out_dir, exist_ok=True)
         binary = bytearray()
         views, accessors = [], []
@@ -517,7 +523,9 @@ class SceneBuilder:
                     return s + 0.0
             return x
 
-        def vec_accessor(values, kind, with_bounds):
+        def vec_accessor(values, kind, with_bounds, factor=1.0):
+            if factor != 1.0:
+                values = [tuple(c * factor for c in v) for v in values]
             n = len(values[0])
             data = struct.pack("<%df" % (n * len(values)), *[c for v in values for c in v])
             acc = {"bufferView": view(data, 34962), "componentType": 5126, "count": len(values), "type": kind}
@@ -548,13 +556,19 @@ class SceneBuilder:
             if m.texture:
                 pbr["baseColorTexture"] = {"index": tex_index[m.texture]}
             mat_index[m.name] = len(materials)
-            materials.append({"name": m.name, "pbrMetallicRoughness": pbr, "doubleSided": m.double_sided})
+            mat = {"name": m.name, "pbrMetallicRoughness": pbr, "doubleSided": m.double_sided}
+            if m.emission is not None:
+                factor, strength = m.emission
+                mat["emissiveFactor"] = [round(c, 6) for c in factor]
+                if strength != 1.0:
+                    mat["extensions"] = {"KHR_materials_emissive_strength": {"emissiveStrength": strength}}
+            materials.append(mat)
 
         meshes = []
         for mesh in self.meshes:
             prims = []
             for prim in mesh.prims.values():
-                attrs = {"POSITION": vec_accessor(prim.positions, "VEC3", True),
+                attrs = {"POSITION": vec_accessor(prim.positions, "VEC3", True, scale),
                          "NORMAL": vec_accessor(prim.normals, "VEC3", False),
                          "TEXCOORD_0": vec_accessor(prim.uvs, "VEC2", False)}
                 prims.append({"attributes": attrs, "indices": index_accessor(prim.indices, len(prim.positions)),
@@ -565,11 +579,14 @@ class SceneBuilder:
         # cameras array or the scene's nodes.
         nodes, cameras = [], []
         for name, eye, target, yfov in self.cameras:
-            cameras.append({"name": name, "type": "perspective",
-                            "perspective": {"yfov": round(yfov, 6), "znear": 0.05}})
+            persp = {"yfov": round(yfov, 6), "znear": 0.05}
+            if name in self.clip:
+                persp = {"yfov": round(yfov, 6), "znear": f32(self.clip[name][0] * scale),
+                         "zfar": f32(self.clip[name][1] * scale)}
+            cameras.append({"name": name, "type": "perspective", "perspective": persp})
             nodes.append({"name": "camera_" + name, "camera": len(cameras) - 1,
                           "rotation": [round(c, 7) + 0.0 for c in look_rotation(sub(target, eye))],
-                          "translation": [round(c, 6) + 0.0 for c in eye]})
+                          "translation": [f32(c * scale) if scale != 1.0 else round(c, 6) + 0.0 for c in eye]})
         lights = []
         if self.sun is not None:
             intensity, direction = self.sun
@@ -581,8 +598,11 @@ class SceneBuilder:
 
         doc = {"asset": {"version": "2.0", "generator": "deepgi tools/gen_scenes.py",
                          "copyright": "deepgi project, original work (same license as the project)"}}
+        used = (["KHR_lights_punctual"] if lights else []) + \
+            (["KHR_materials_emissive_strength"] if any("extensions" in m for m in materials) else [])
+        if used:
+            doc["extensionsUsed"] = used
         if lights:
-            doc["extensionsUsed"] = ["KHR_lights_punctual"]
             doc["extensions"] = {"KHR_lights_punctual": {"lights": lights}}
         doc["scene"] = 0
         doc["scenes"] = [{"name": self.name, "nodes": list(range(len(nodes)))}]
@@ -927,6 +947,229 @@ def build_atrium():
     return b, textures
 
 
+# ----------------------------------------------------------------------------------------------- hard GI scenes
+
+# Small scenes where screen-space GI is known to fail (issue 9; ../shared/docs/gi-accuracy.md), written to
+# assets/hard/<name>/ at scale 1 and as <name>_s0.001 / <name>_s1000 with every length multiplied (the sun's
+# irradiance and the emission are unchanged, so the true images are the same). Each is the boundary of a union of
+# cells of one grid, like the Cornell shell: one watertight, consistently wound solid whose faces share vertices,
+# so light enters a room only through the openings made on purpose (a closed room is exactly dark).
+
+HARD_SCALES = (1.0, 0.001, 1000.0)
+HARD_SUN = 10.0  # W/m^2
+
+
+def in_box(p, box):
+    lo, hi = box
+    return all(lo[a] < p[a] < hi[a] for a in range(3))
+
+
+class CellScene:
+    """A solid shell around `rooms` (boxes of air) with `solids` (boxes of matter inside rooms, e.g. a pillar)
+    and `holes` (boxes of air cut through the shell, e.g. a skylight). `outer` is the shell's outer box."""
+
+    def __init__(self, outer):
+        self.outer = outer
+        self.rooms, self.solids, self.holes = [], [], []
+
+    def is_solid(self, c):
+        if not in_box(c, self.outer) or any(in_box(c, h) for h in self.holes):
+            return False
+        if any(in_box(c, s) for s in self.solids):
+            return True
+        return not any(in_box(c, r) for r in self.rooms)
+
+    def in_room(self, c):
+        return any(in_box(c, r) for r in self.rooms) and not any(in_box(c, s) for s in self.solids)
+
+    def build(self, b, material_for):
+        """Emits every face between a solid cell and an air cell, facing the air. material_for(face_lo,
+        face_hi, normal, into_room) names its material."""
+        grid = [set(), set(), set()]
+        for box in [self.outer] + self.rooms + self.solids + self.holes:
+            for a in range(3):
+                lo = max(box[0][a], self.outer[0][a])
+                hi = min(box[1][a], self.outer[1][a])
+                grid[a].update((round(lo, 6), round(hi, 6)))
+        X, Y, Z = [sorted(g) for g in grid]
+        coords = (X, Y, Z)
+        n = (len(X) - 1, len(Y) - 1, len(Z) - 1)
+        centre = lambda i, j, k: (0.5 * (X[i] + X[i + 1]), 0.5 * (Y[j] + Y[j + 1]), 0.5 * (Z[k] + Z[k + 1]))
+        solid = {}
+        for i in range(n[0]):
+            for j in range(n[1]):
+                for k in range(n[2]):
+                    solid[(i, j, k)] = self.is_solid(centre(i, j, k))
+        b.begin_solid(b.name + " shell")
+        for (i, j, k), s in sorted(solid.items()):
+            if not s:
+                continue
+            idx = (i, j, k)
+            lo = (X[i], Y[j], Z[k])
+            hi = (X[i + 1], Y[j + 1], Z[k + 1])
+            for axis in range(3):
+                for sign in (-1, 1):
+                    nb = list(idx)
+                    nb[axis] += sign
+                    if solid.get(tuple(nb), False):
+                        continue
+                    into_room = tuple(nb) in solid and self.in_room(centre(*nb))
+                    normal = [0.0, 0.0, 0.0]
+                    normal[axis] = float(sign)
+                    plane = hi[axis] if sign > 0 else lo[axis]
+                    u, v = (axis + 1) % 3, (axis + 2) % 3
+                    pts = []
+                    for su, sv in ((0, 0), (1, 0), (1, 1), (0, 1)):
+                        p = [0.0, 0.0, 0.0]
+                        p[axis] = plane
+                        p[u] = hi[u] if su else lo[u]
+                        p[v] = hi[v] if sv else lo[v]
+                        pts.append(tuple(p))
+                    flo = tuple(min(p[a] for p in pts) for a in range(3))
+                    fhi = tuple(max(p[a] for p in pts) for a in range(3))
+                    b.polygon(material_for(flo, fhi, tuple(normal), into_room), pts, tuple(normal))
+        b.end_solid()
+
+
+def room_material(flo, fhi, n, into_room):
+    """Default interior naming: floors, ceilings and walls; everything facing out of the rooms is `exterior`."""
+    if not into_room:
+        return "exterior"
+    return "floor" if n[1] > 0 else "ceiling" if n[1] < 0 else "wall"
+
+
+def standard_materials(b, albedo=0.7):
+    b.material("floor", (albedo, albedo, albedo))
+    b.material("wall", (albedo, albedo, albedo))
+    b.material("ceiling", (albedo, albedo, albedo))
+    b.material("exterior", (0.5, 0.5, 0.5))
+
+
+def build_offscreen_light():
+    """6 x 3 x 6 m room (x, z in -3..3). A 3 x 1.1 m skylight (x -1.5..1.5, z 1..2.1) lets the sun (75 deg
+    high, travelling towards +Z) onto the floor at z ~ 1.8..2.9, behind the camera. The camera stands near the
+    centre and looks into the far (-X, -Z) corner: everything it sees is lit only by light bounced off that patch
+    (its direct image is black)."""
+    b = SceneBuilder("offscreen_light")
+    standard_materials(b, 0.7)
+    b.mesh("room")
+    cs = CellScene(((-3.2, -0.2, -3.2), (3.2, 3.2, 3.2)))
+    cs.rooms.append(((-3.0, 0.0, -3.0), (3.0, 3.0, 3.0)))
+    cs.holes.append(((-1.5, 2.9, 1.0), (1.5, 3.3, 2.1)))
+    cs.build(b, room_material)
+    b.sun = (HARD_SUN, sun_travel_direction(180.0, 75.0))
+    b.camera("corner", (0.6, 1.6, 0.4), (-3.0, 0.9, -3.0), 1.0, clip=(0.02, 50.0))
+    return b
+
+
+def build_thin_wall():
+    """Two 4 x 3 x 5 m rooms side by side, x -4..-0.025 (dark) and 0.025..4 (lit), separated by a 5 cm wall
+    (x -0.025..0.025, floor to ceiling). The lit room has a 1.4 x 1.6 m skylight (x 1.2..2.6, z -0.8..0.8) and a sun
+    patch on its floor; the dark room is closed, so its true radiance is exactly 0. Camera `dark` stands in the
+    dark room looking at the thin wall (its second layer sees the lit room behind it); `lit` is its mirror image
+    in the lit room, for the lit side's indirect level."""
+    b = SceneBuilder("thin_wall")
+    standard_materials(b, 0.7)
+    b.mesh("rooms")
+    cs = CellScene(((-4.2, -0.2, -2.7), (4.2, 3.2, 2.7)))
+    cs.rooms.append(((-4.0, 0.0, -2.5), (-0.025, 3.0, 2.5)))
+    cs.rooms.append(((0.025, 0.0, -2.5), (4.0, 3.0, 2.5)))
+    cs.holes.append(((1.2, 2.9, -0.8), (2.6, 3.3, 0.8)))
+    cs.build(b, room_material)
+    b.sun = (HARD_SUN, sun_travel_direction(270.0, 70.0))  # sun in the -X sky: the patch moves towards +X
+    b.camera("dark", (-3.6, 1.5, 2.1), (0.0, 1.0, -1.2), 1.0, clip=(0.02, 50.0))
+    b.camera("lit", (3.6, 1.5, 2.1), (0.0, 1.0, -1.2), 1.0, clip=(0.02, 50.0))
+    return b
+
+
+def build_hidden_emitter():
+    """5 x 2.6 x 7 m closed room (x -2.5..2.5, z -2.5..4.5), no sun. A full-height pillar 1.2 x 0.8 m at the
+    centre hides an emissive floor panel (1 x 1 m, 3 cm high, top emitting radiance 8, z -1.6..-0.6) behind it
+    from the camera at z = 4; the panel lights the back wall, the ceiling and the pillar's back. The camera's
+    second layer sees the panel; a camera path (path.json) moves sideways until the panel comes into view."""
+    b = SceneBuilder("hidden_emitter")
+    standard_materials(b, 0.7)
+    b.material("emitter", (0.8, 0.8, 0.8), emission=((1.0, 0.9, 0.7), 8.0))
+    b.mesh("room")
+    cs = CellScene(((-2.7, -0.2, -2.7), (2.7, 2.8, 4.7)))
+    cs.rooms.append(((-2.5, 0.0, -2.5), (2.5, 2.6, 4.5)))
+    cs.solids.append(((-0.6, -1.0, -0.4), (0.6, 3.0, 0.4)))
+    panel = ((-0.5, -1.0, -1.6), (0.5, 0.03, -0.6))
+    cs.solids.append(panel)
+
+    def material(flo, fhi, n, into_room):
+        if into_room and n[1] > 0 and flo[1] == 0.03:
+            return "emitter"
+        return room_material(flo, fhi, n, into_room)
+    cs.build(b, material)
+    b.sun = (0.0, sun_travel_direction(0.0, 60.0))  # a light of zero intensity: the default sun stays off
+    b.camera("front", (0.0, 1.6, 4.0), (0.0, 1.1, -2.5), 1.0, clip=(0.02, 50.0))
+    b.camera_path = {"camera": "front", "frames": 24, "reference_frames": [12, 24],
+                     "keys": [{"eye": (0.0, 1.6, 4.0), "target": (0.0, 1.1, -2.5)},
+                              {"eye": (2.0, 1.6, 4.0), "target": (0.8, 1.1, -2.5)}]}
+    return b
+
+
+def build_sun_patch():
+    """5 x 2.6 x 5 m room (x, z in -2.5..2.5). A 1.4 x 1.4 m skylight (x, z -0.7..0.7) over a red-brown rug
+    (2.4 x 2.4 m, 1 cm high) on the floor; the sun, 80 deg high, lands on the rug. Walls, ceiling and floor are lit
+    only by light bounced off the rug. The camera stands low in the (+X, +Z) corner looking up into the opposite
+    top corner: it sees the rug, the floor, both far walls and the ceiling (the skylight shows black sky)."""
+    b = SceneBuilder("sun_patch")
+    standard_materials(b, 0.7)
+    b.material("rug", (0.7, 0.35, 0.2))
+    b.mesh("room")
+    cs = CellScene(((-2.7, -0.2, -2.7), (2.7, 2.8, 2.7)))
+    cs.rooms.append(((-2.5, 0.0, -2.5), (2.5, 2.6, 2.5)))
+    cs.solids.append(((-1.2, -1.0, -1.2), (1.2, 0.01, 1.2)))
+    cs.holes.append(((-0.7, 2.5, -0.7), (0.7, 2.9, 0.7)))
+
+    def material(flo, fhi, n, into_room):
+        if into_room and n[1] > 0 and flo[1] == 0.01:
+            return "rug"
+        return room_material(flo, fhi, n, into_room)
+    cs.build(b, material)
+    b.sun = (HARD_SUN, sun_travel_direction(200.0, 80.0))
+    b.camera("corner", (2.2, 0.8, 2.2), (-2.5, 1.4, -2.5), 1.3, clip=(0.02, 50.0))
+    return b
+
+
+def build_furnace():
+    """Closed 4 x 3 x 4 m box (x, z in -2..2) with a 0.8 m block on the floor; every surface has albedo 0.5 and
+    emission 0.1, so the radiance is exactly 0.1 / (1 - 0.5) = 0.2 everywhere. No sun (a zero-intensity light keeps
+    the renderer's default sun off)."""
+    b = SceneBuilder("furnace")
+    b.material("grey", (0.5, 0.5, 0.5), emission=((0.1, 0.1, 0.1), 1.0))
+    b.mesh("box")
+    cs = CellScene(((-2.2, -0.2, -2.2), (2.2, 3.2, 2.2)))
+    cs.rooms.append(((-2.0, 0.0, -2.0), (2.0, 3.0, 2.0)))
+    cs.solids.append(((-0.9, -1.0, -0.9), (-0.1, 0.8, -0.1)))
+    cs.build(b, lambda flo, fhi, n, into_room: "grey")
+    b.sun = (0.0, sun_travel_direction(0.0, 60.0))
+    b.camera("inside", (1.7, 2.4, 1.7), (-1.2, 0.4, -1.0), 1.2, clip=(0.02, 50.0))
+    return b
+
+
+HARD_BUILDERS = (build_offscreen_light, build_thin_wall, build_hidden_emitter, build_sun_patch, build_furnace)
+
+
+def scale_suffix(scale):
+    return "" if scale == 1.0 else "_s%g" % scale
+
+
+def write_camera_path(path, out_dir, scale):
+    """path.json beside the scene: camera keys (eye, target) the bench interpolates linearly over `frames`."""
+    doc = dict(path)
+    doc["keys"] = [{"eye": [f32_round(c * scale) for c in k["eye"]],
+                    "target": [f32_round(c * scale) for c in k["target"]]} for k in path["keys"]]
+    with open(os.path.join(out_dir, "path.json"), "w", encoding="ascii", newline="\n") as f:
+        f.write(json.dumps(doc, indent=1) + "\n")
+
+
+def f32_round(v):
+    return float("%.7g" % v) + 0.0
+
+
 # ----------------------------------------------------------------------------------------------- main
 
 
@@ -938,16 +1181,31 @@ def main():
     for build in (build_cornell_box, build_atrium):
         b, textures = build()
         b.check()
-        total, per_mat, lo, hi = b.stats()
-        out_dir = os.path.join(args.out, b.name)
-        b.write(out_dir, textures)
-        print("%s: %d triangles, bounds [%.2f %.2f %.2f] .. [%.2f %.2f %.2f], %d closed solids checked"
-              % (b.name, total, lo[0], lo[1], lo[2], hi[0], hi[1], hi[2], len(b.solids)))
-        for name, count in per_mat.items():
-            print("    %-14s %6d triangles" % (name, count))
-        print("    cameras: " + ", ".join(c[0] for c in b.cameras))
-        print("    sun: intensity %.2f W/m^2, travels along (%.4f, %.4f, %.4f)" % ((b.sun[0],) + tuple(b.sun[1])))
-        print("    wrote " + os.path.normpath(out_dir))
+        report(b, os.path.join(args.out, b.name), textures)
+    for build in HARD_BUILDERS:
+        b = build()
+        b.check()
+        base = b.name
+        for scale in HARD_SCALES:
+            b.name = base + scale_suffix(scale)
+            out_dir = os.path.join(args.out, "hard", b.name)
+            b.write(out_dir, {}, scale)
+            if b.camera_path:
+                write_camera_path(b.camera_path, out_dir, scale)
+            print("%s: scale %g, %d triangles, wrote %s" % (b.name, scale, sum(1 for _ in b.triangles()),
+                                                           os.path.normpath(out_dir)))
+
+
+def report(b, out_dir, textures):
+    total, per_mat, lo, hi = b.stats()
+    b.write(out_dir, textures)
+    print("%s: %d triangles, bounds [%.2f %.2f %.2f] .. [%.2f %.2f %.2f], %d closed solids checked"
+          % (b.name, total, lo[0], lo[1], lo[2], hi[0], hi[1], hi[2], len(b.solids)))
+    for name, count in per_mat.items():
+        print("    %-14s %6d triangles" % (name, count))
+    print("    cameras: " + ", ".join(c[0] for c in b.cameras))
+    print("    sun: intensity %.2f W/m^2, travels along (%.4f, %.4f, %.4f)" % ((b.sun[0],) + tuple(b.sun[1])))
+    print("    wrote " + os.path.normpath(out_dir))
 
 
 if __name__ == "__main__":

@@ -1,4 +1,4 @@
-#include "renderer/bench/metrics.h"
+#include "bench/metrics.h"
 
 #include <algorithm>
 #include <cmath>

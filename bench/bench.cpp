@@ -1,7 +1,7 @@
-#include "renderer/bench/bench.h"
+#include "bench/bench.h"
 
-#include "renderer/bench/canvas.h"
-#include "renderer/bench/metrics.h"
+#include "bench/canvas.h"
+#include "bench/metrics.h"
 #include "renderer/gl/offscreen_context.h"
 #include "renderer/reference/path_tracer.h"
 #include "renderer/renderer.h"

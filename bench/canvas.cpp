@@ -1,6 +1,6 @@
-#include "renderer/bench/canvas.h"
+#include "bench/canvas.h"
 
-#include "renderer/bench/metrics.h"
+#include "bench/metrics.h"
 #include "renderer/core/image_io.h"
 
 #include <algorithm>
