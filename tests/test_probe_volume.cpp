@@ -483,5 +483,17 @@ TEST_F(GLTest, ProbeVolumeShaderMatchesTheCpp) {
         lit += E.x > 0.01f;
     }
     EXPECT_GT(lit, N / 2) << "most points receive some indirect light";
+
+    // Later uploads send only the tile rows the updates changed; the textures still equal the CPU arrays.
+    s.probeRaysPerFrame = 5 * 128;
+    v.update(s);
+    v.uploadTextures(tex[0].id(), tex[1].id(), tex[2].id());
+    const std::vector<ProbeTextureDesc> descs = v.textures();
+    for (size_t t = 0; t < descs.size(); ++t) {
+        const ProbeTextureDesc& d = descs[t];
+        std::vector<float> back(size_t(d.width) * d.height * d.channels);
+        glGetTextureImage(tex[t].id(), 0, d.uploadFormat, GL_FLOAT, GLsizei(back.size() * sizeof(float)), back.data());
+        EXPECT_TRUE(std::equal(back.begin(), back.end(), d.data)) << d.name;
+    }
     std::printf("GLSL vs C++: worst difference %.3f%% over %d points\n", 100.0f * worst, N);
 }

@@ -110,7 +110,7 @@ public:
 
     const ProbeGrid& grid() const { return grid_; }
     int probeCount() const { return grid_.count(); }
-    int activeProbeCount() const { return int(active_.size()); }
+    int activeProbeCount() const { return activeCount_; }
     ProbeState state(int probe) const { return state_[probe]; }
     glm::vec3 probePosition(int probe) const;  // grid position + relocation offset
     glm::vec3 probeOffset(int probe) const { return offset_[probe]; }
@@ -159,8 +159,8 @@ private:
     std::vector<ProbeState> state_;
     std::vector<glm::vec3> offset_;
     std::vector<int> updates_;
-    std::vector<int> active_;  // indices of active probes, the round-robin order
-    size_t cursor_ = 0;
+    int activeCount_ = 0;
+    size_t cursor_ = 0;  // round-robin position over the grid
     uint64_t updateIndex_ = 0;
     std::vector<float> irradiance_, depth_, data_;
     struct TexelDirections {  // interior texel directions, row-major per tile, as arrays for SIMD loops
