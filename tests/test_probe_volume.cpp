@@ -3,6 +3,7 @@
 
 #include "renderer/probes/probe_volume.h"
 #include "renderer/reference/path_tracer.h"
+#include "renderer/scene/gltf_loader.h"
 
 #include <glm/gtc/matrix_transform.hpp>
 
@@ -496,4 +497,32 @@ TEST_F(GLTest, ProbeVolumeShaderMatchesTheCpp) {
         EXPECT_TRUE(std::equal(back.begin(), back.end(), d.data)) << d.name;
     }
     std::printf("GLSL vs C++: worst difference %.3f%% over %d points\n", 100.0f * worst, N);
+}
+
+// Benchmark, not run by ctest (figures, no assertion on time):
+//   build/tests/deepgi_tests --gtest_also_run_disabled_tests --gtest_filter='*ProbeVolumeBench*'
+TEST(ProbeVolumeBench, DISABLED_AtriumDefaultSettings) {
+    const Scene scene = loadGltf(std::string(DEEPGI_ASSET_DIR) + "/atrium/atrium.gltf");
+    const Settings s;
+    for (int threads : {1, 2}) {
+        ProbeVolume v(scene, s, 1, threads);
+        double wall = 0.0, cpu = 0.0;
+        uint64_t rays = 0, shadow = 0;
+        const int frames = 20;
+        for (int f = 0; f < frames; ++f) {
+            const ProbeUpdateStats st = v.update(s);
+            wall += st.milliseconds;
+            cpu += st.cpuMilliseconds;
+            rays += st.probeRays;
+            shadow += st.shadowRays;
+        }
+        size_t bytes = 0;
+        for (const ProbeTextureDesc& d : v.textures()) bytes += size_t(d.width) * d.height * d.channels * 4;
+        std::printf("atrium, %d thread(s): grid %dx%dx%d, %d active, placement %.0f ms (%llu rays); per update "
+                    "%.1f ms wall, %.1f ms CPU for %llu probe + %llu shadow rays; textures %.1f MiB\n",
+                    threads, v.grid().counts.x, v.grid().counts.y, v.grid().counts.z, v.activeProbeCount(),
+                    v.placementMilliseconds(), (unsigned long long)v.placementRays(), wall / frames, cpu / frames,
+                    (unsigned long long)(rays / frames), (unsigned long long)(shadow / frames),
+                    double(bytes) / (1024.0 * 1024.0));
+    }
 }
