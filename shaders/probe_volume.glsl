@@ -60,7 +60,7 @@ vec2 probeAtlasUv(int probe, int n, vec3 d, vec2 atlasSize) {
 }
 
 vec4 probeIrradianceWeighted(vec3 X, vec3 n) {
-    if (any(isnan(X)) || any(isinf(X)) || any(isnan(n)) || any(isinf(n))) return vec4(0.0);
+    if (any(isnan(X)) || any(isinf(X)) || any(isnan(n)) || any(isinf(n)) || !(dot(n, n) > 1e-12)) return vec4(0.0);
     vec3 spacing = uProbeSpacing.xyz;
     ivec3 last = uProbeCounts.xyz - 1;
     vec3 biased = X + n * uProbeLo.w;

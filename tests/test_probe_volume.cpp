@@ -9,6 +9,7 @@
 
 #include <cstdio>
 #include <fstream>
+#include <limits>
 #include <sstream>
 #include <thread>
 
@@ -189,6 +190,66 @@ TEST(ProbeVolume, OpenSceneMatchesThePathTracersIndirectLight) {
         EXPECT_NEAR(probe, truth[i], 0.15f * truth[i] + 0.02f * peak) << "point " << i;
     }
     std::printf("open scene: %d probes active of %d, %.2f ms per update\n", v.activeProbeCount(), v.probeCount(), ms);
+}
+
+// A closed room lit by a point light and a spot light (inverse square, glTF range window, cone): the probes use
+// the path tracer's lights and shadow rays. Same tolerance as the open scene.
+TEST(ProbeVolume, PointAndSpotLitRoomMatchesThePathTracer) {
+    Scene scene;
+    const int m = addMaterial(scene, glm::vec3(0.6f, 0.5f, 0.4f));
+    addBox(scene, glm::vec3(0.0f), glm::vec3(4.0f, 3.0f, 4.0f), m, true);
+    addBox(scene, {2.5f, 0.0f, 2.5f}, {3.3f, 1.2f, 3.3f}, m, false);  // a block that casts shadows
+    Light point;
+    point.type = LightType::Point;
+    point.position = {1.2f, 2.2f, 1.5f};
+    point.intensity = 6.0f;
+    point.range = 8.0f;
+    scene.lights.push_back(point);
+    Light spot;
+    spot.type = LightType::Spot;
+    spot.position = {3.5f, 2.8f, 0.5f};
+    spot.direction = glm::normalize(glm::vec3(-0.3f, -1.0f, 0.4f));
+    spot.intensity = 12.0f;
+    spot.innerConeAngle = 0.3f;
+    spot.outerConeAngle = 0.6f;
+    scene.lights.push_back(spot);
+    scene.computeBounds();
+    const Settings s;
+    ProbeVolume v(scene, s);
+    converge(v, s, 60);
+    const ReferenceTracer tracer(scene);
+    struct Point { glm::vec3 p, n; };
+    const Point points[] = {
+        {{2.0f, 3.0f, 2.0f}, {0, -1, 0}}, {{0.0f, 1.5f, 2.0f}, {1, 0, 0}}, {{2.0f, 0.0f, 1.0f}, {0, 1, 0}},
+        {{4.0f, 1.0f, 3.0f}, {-1, 0, 0}}, {{1.0f, 0.0f, 3.5f}, {0, 1, 0}}, {{3.0f, 1.2f, 2.9f}, {0, 1, 0}},
+    };
+    std::vector<float> truth;
+    float peak = 0.0f;
+    for (const Point& q : points) {
+        truth.push_back(tracedIndirectIrradiance(tracer, q.p, q.n, 0.6f));  // red channel: albedo 0.6
+        peak = std::max(peak, truth.back());
+    }
+    for (size_t i = 0; i < std::size(points); ++i) {
+        const float probe = v.irradiance(points[i].p, points[i].n).x;
+        std::printf("lit room point (%.1f %.1f %.1f): probes %.4f, path tracer %.4f (%+.1f%%)\n", points[i].p.x,
+                    points[i].p.y, points[i].p.z, probe, truth[i], 100.0f * (probe - truth[i]) / truth[i]);
+        EXPECT_NEAR(probe, truth[i], 0.15f * truth[i] + 0.02f * peak) << "point " << i;
+    }
+}
+
+// Bad queries (NaN position, zero normal) answer 0, never NaN.
+TEST(ProbeVolume, BadQueriesAnswerZero) {
+    const Scene scene = furnace(0.5f, 0.1f, 1.0f);
+    Settings s = noLights();
+    s.probeRelativeSpacing = 0.5f;
+    ProbeVolume v(scene, s);
+    v.update(s);
+    const float nan = std::numeric_limits<float>::quiet_NaN(), inf = std::numeric_limits<float>::infinity();
+    EXPECT_EQ(v.irradiance({nan, 0.5f, 0.5f}, {0, 1, 0}), glm::vec3(0.0f));
+    EXPECT_EQ(v.irradiance({0.5f, 0.5f, 0.5f}, {0, 0, 0}), glm::vec3(0.0f));
+    EXPECT_EQ(v.irradiance({0.5f, inf, 0.5f}, {0, 1, 0}), glm::vec3(0.0f));
+    const glm::vec3 far = v.irradiance({1e30f, -1e30f, 0.5f}, {0, 1, 0});
+    EXPECT_TRUE(std::isfinite(far.x) && std::isfinite(far.y) && std::isfinite(far.z));
 }
 
 // (c) Probes inside a solid box are moved out when they are close to its surface, disabled when they are not;

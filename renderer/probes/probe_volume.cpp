@@ -305,7 +305,7 @@ glm::vec<C, float> ProbeVolume::sampleAtlas(const std::vector<float>& atlas, int
 
 glm::vec3 ProbeVolume::irradiance(const glm::vec3& x, const glm::vec3& n, float* weightSum) const {
     if (weightSum) *weightSum = 0.0f;
-    if (!finite3(x) || !finite3(n)) return glm::vec3(0.0f);
+    if (!finite3(x) || !finite3(n) || !(glm::dot(n, n) > 1e-12f)) return glm::vec3(0.0f);
     const glm::vec3 biased = x + n * normalBias_;
     const glm::ivec3 last = grid_.counts - 1;
     const glm::vec3 g = glm::clamp((biased - grid_.lo) / grid_.spacing - 0.5f, glm::vec3(-1.0f), glm::vec3(last));
