@@ -1,4 +1,5 @@
 // The world-space irradiance probes (renderer/probes/probe_volume.h) against exact answers and the path tracer.
+// One file over 500 lines: the tests share its scenes and helpers and all prove one class.
 #include "gl_fixture.h"
 
 #include "renderer/probes/probe_volume.h"
