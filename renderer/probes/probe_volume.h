@@ -111,6 +111,7 @@ public:
     void resetHistory();
 
     // Irradiance at world position x on a surface of unit normal n, as shaders/probe_volume.glsl computes it.
+    // Safe from many threads, not during update().
     // weightSum (optional) receives the total weight of the probes used (0 = no probe could answer).
     glm::vec3 irradiance(const glm::vec3& x, const glm::vec3& n, float* weightSum = nullptr) const;
 
