@@ -1,0 +1,490 @@
+#include "renderer/probes/probe_volume.h"
+
+#include "renderer/probes/octahedral.h"
+#include "renderer/scene/lighting.h"
+
+#include <glm/gtc/quaternion.hpp>
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <exception>
+#include <limits>
+#include <mutex>
+#include <stdexcept>
+#include <string>
+#include <thread>
+
+#include <time.h>
+
+namespace deepgi {
+namespace {
+
+constexpr float kPi = 3.14159265358979323846f;
+constexpr float kInf = std::numeric_limits<float>::infinity();
+constexpr int kPlacementRays = 256;        // fixed directions that classify a probe when it is placed
+constexpr int kPlacementIterations = 4;    // moves tried before a probe inside geometry is disabled
+constexpr float kMinFrontDistance = 0.1f;  // x the smallest spacing: a probe is kept this far from surfaces
+constexpr float kDepthSharpness = 50.0f;   // exponent of the depth maps' cosine lobe (DDGI)
+constexpr float kDepthLobeCutoff = 0.8f;   // cos below which the lobe is ignored: 0.8^50 = 1.4e-5
+constexpr float kRampUpdates = 4.0f;       // the k-th update blends with weight k/(k+4) (capped by hysteresis)
+
+uint64_t splitmix64(uint64_t x) {
+    x += 0x9E3779B97F4A7C15ull;
+    x = (x ^ (x >> 30)) * 0xBF58476D1CE4E5B9ull;
+    x = (x ^ (x >> 27)) * 0x94D049BB133111EBull;
+    return x ^ (x >> 31);
+}
+float unitFloat(uint64_t bits) { return float(bits >> 40) * (1.0f / 16777216.0f); }  // [0, 1)
+
+// Direction i of n spread evenly over the sphere (spherical Fibonacci).
+glm::vec3 fibonacciDirection(int i, int n) {
+    const float z = 1.0f - (2.0f * float(i) + 1.0f) / float(n);
+    const float r = std::sqrt(std::max(0.0f, 1.0f - z * z));
+    const float phi = float(i) * kPi * (3.0f - std::sqrt(5.0f));
+    return {r * std::cos(phi), r * std::sin(phi), z};
+}
+
+// A uniformly random rotation (Shoemake's quaternion), the same for every probe of one update.
+glm::mat3 randomRotation(uint64_t seed, uint64_t update) {
+    const uint64_t h = splitmix64(splitmix64(seed) ^ (update * 0xD1B54A32D192ED03ull));
+    const float u1 = unitFloat(h), u2 = unitFloat(splitmix64(h + 1)), u3 = unitFloat(splitmix64(h + 2));
+    const float a = std::sqrt(1.0f - u1), b = std::sqrt(u1);
+    const glm::quat q(b * std::cos(2.0f * kPi * u3), a * std::sin(2.0f * kPi * u2), a * std::cos(2.0f * kPi * u2),
+                      b * std::sin(2.0f * kPi * u3));  // (w, x, y, z)
+    return glm::mat3_cast(glm::normalize(q));
+}
+
+bool finite3(const glm::vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
+
+// Runs f(item) for item in [0, n) on up to `threads` threads; the first exception is rethrown after the join.
+template <class F>
+void parallelFor(int n, int threads, const F& f) {
+    std::atomic<int> next{0};
+    std::exception_ptr error;
+    std::mutex errorMutex;
+    auto worker = [&] {
+        try {
+            for (int i; (i = next.fetch_add(1)) < n;) f(i);
+        } catch (...) {
+            std::lock_guard<std::mutex> lock(errorMutex);
+            if (!error) error = std::current_exception();
+            next.store(n);
+        }
+    };
+    const int t = std::max(1, std::min(threads, n));
+    std::vector<std::thread> pool;
+    for (int i = 1; i < t; ++i) pool.emplace_back(worker);
+    worker();
+    for (auto& th : pool) th.join();
+    if (error) std::rethrow_exception(error);
+}
+
+double msSince(std::chrono::steady_clock::time_point start) {
+    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+}
+
+double processCpuMs() {
+    timespec t{};
+    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
+    return double(t.tv_sec) * 1e3 + double(t.tv_nsec) * 1e-6;
+}
+
+// One ray's contribution to every irradiance texel: cosine-weighted radiance and the weight (SoA, vectorisable).
+void accumulateIrradiance(size_t n, const float* x, const float* y, const float* z, const glm::vec3& d,
+                          const glm::vec3& L, float* __restrict r, float* __restrict g, float* __restrict b,
+                          float* __restrict w) {
+    for (size_t j = 0; j < n; j += 8)  // n is a multiple of 8: fixed inner trip count, which -O2 vectorises
+        for (size_t i = j; i < j + 8; ++i) {
+            const float c = std::max(0.0f, x[i] * d.x + y[i] * d.y + z[i] * d.z);
+            r[i] += c * L.x;
+            g[i] += c * L.y;
+            b[i] += c * L.z;
+            w[i] += c;
+        }
+}
+
+// One ray's distance into every depth texel with weight cos^50 (cut at cos 0.8: no denormals, 0.8^50 = 1.4e-5).
+void accumulateDepth(size_t n, const float* x, const float* y, const float* z, const glm::vec3& d, float dist,
+                     float* __restrict m1, float* __restrict m2, float* __restrict w) {
+    static_assert(kDepthSharpness == 50.0f, "the power below is c^32 * c^16 * c^2");
+    for (size_t j = 0; j < n; j += 8)
+        for (size_t i = j; i < j + 8; ++i) {
+            const float dot = x[i] * d.x + y[i] * d.y + z[i] * d.z;
+            const float c = dot > kDepthLobeCutoff ? dot : 0.0f;
+            const float c2 = c * c, c4 = c2 * c2, c8 = c4 * c4, c16 = c8 * c8, c32 = c16 * c16;
+            const float wt = c32 * c16 * c2;
+            m1[i] += wt * dist;
+            m2[i] += wt * dist * dist;
+            w[i] += wt;
+        }
+}
+
+}  // namespace
+
+ProbeGrid fitProbeGrid(const Aabb& bounds, const Settings& s) {
+    if (!bounds.valid() || !finite3(bounds.lo) || !finite3(bounds.hi))
+        throw std::runtime_error("probes: the scene has no finite geometry to place probes around");
+    const glm::vec3 extent = bounds.extent();
+    const float longest = std::max({extent.x, extent.y, extent.z});
+    float spacing = s.probeSpacing > 0.0f ? s.probeSpacing : s.probeRelativeSpacing * longest;
+    if (!(spacing > 0.0f) || !std::isfinite(spacing))
+        throw std::runtime_error("probes: the probe spacing is " + std::to_string(spacing) +
+                                 " (the scene's bounds have no size; set probes.spacing)");
+    ProbeGrid g;
+    g.requestedSpacing = spacing;
+    const int maxCount = std::max(8, s.probeMaxCount);
+    for (;;) {
+        // At least 2 probes per axis; a flat axis gets the requested spacing around the bounds' centre.
+        glm::ivec3 counts;
+        for (int a = 0; a < 3; ++a) {
+            const double n = std::ceil(double(extent[a]) / double(spacing) - 1e-4);
+            counts[a] = int(std::max(2.0, std::min(n, 1e6)));
+        }
+        if (int64_t(counts.x) * counts.y * counts.z <= maxCount) {
+            g.counts = counts;
+            break;
+        }
+        spacing *= 1.02f;
+        g.coarsened = true;
+    }
+    for (int a = 0; a < 3; ++a) {
+        const float covered = std::max(extent[a], spacing * 0.5f * float(g.counts[a]));
+        g.spacing[a] = covered / float(g.counts[a]);
+        g.lo[a] = bounds.center()[a] - 0.5f * covered;
+    }
+    return g;
+}
+
+bool ProbeVolume::layoutChanged(const Settings& a, const Settings& b) {
+    return a.probeSpacing != b.probeSpacing || a.probeRelativeSpacing != b.probeRelativeSpacing ||
+           a.probeMaxCount != b.probeMaxCount || a.probeIrradianceTexels != b.probeIrradianceTexels ||
+           a.probeDepthTexels != b.probeDepthTexels || a.probeInsideFraction != b.probeInsideFraction ||
+           a.probeMaxRelocation != b.probeMaxRelocation || a.probeNormalBias != b.probeNormalBias;
+}
+
+ProbeVolume::ProbeVolume(const Scene& scene, const Settings& s, uint64_t seed, int threads)
+    : scene_(scene), tracer_(scene), grid_(fitProbeGrid(scene.bounds, s)), seed_(seed) {
+    threads_ = threads > 0 ? threads : std::max(1, int(std::thread::hardware_concurrency()));
+    irrN_ = std::min(std::max(s.probeIrradianceTexels, 2), 64);
+    depthN_ = std::min(std::max(s.probeDepthTexels, 2), 64);
+    normalBias_ = s.probeNormalBias * grid_.minSpacing();
+    maxDistance_ = 1.5f * glm::length(grid_.spacing);
+    const int n = grid_.count();
+    tilesPerRow_ = std::max(1, int(std::ceil(std::sqrt(double(n)))));
+    tileRows_ = (n + tilesPerRow_ - 1) / tilesPerRow_;
+    state_.assign(size_t(n), ProbeState::Active);
+    offset_.assign(size_t(n), glm::vec3(0.0f));
+    updates_.assign(size_t(n), 0);
+    const size_t irrW = size_t(tilesPerRow_) * (irrN_ + 2), irrH = size_t(tileRows_) * (irrN_ + 2);
+    const size_t depW = size_t(tilesPerRow_) * (depthN_ + 2), depH = size_t(tileRows_) * (depthN_ + 2);
+    irradiance_.assign(irrW * irrH * 4, 0.0f);
+    for (size_t i = 3; i < irradiance_.size(); i += 4) irradiance_[i] = 1.0f;
+    depth_.resize(depW * depH * 2);
+    for (size_t i = 0; i < depth_.size(); i += 2) {  // nothing seen yet: everything visible
+        depth_[i] = maxDistance_;
+        depth_[i + 1] = maxDistance_ * maxDistance_;
+    }
+    data_.assign(size_t(tilesPerRow_) * tileRows_ * 4, 0.0f);
+    for (auto [dirs, n] : {std::pair{&irrDirs_, irrN_}, std::pair{&depthDirs_, depthN_}})
+        for (int j = 0; j < n; ++j)
+            for (int i = 0; i < n; ++i) {
+                const glm::vec3 d = octahedral::texelDirection(i, j, n);
+                dirs->x.push_back(d.x);
+                dirs->y.push_back(d.y);
+                dirs->z.push_back(d.z);
+            }
+    for (TexelDirections* dirs : {&irrDirs_, &depthDirs_}) {
+        dirs->count = dirs->x.size();
+        const size_t padded = (dirs->count + 7) / 8 * 8;
+        dirs->x.resize(padded, 0.0f);
+        dirs->y.resize(padded, 0.0f);
+        dirs->z.resize(padded, 0.0f);
+    }
+    place(s);
+    dirtyRowLo_ = 0;
+    dirtyRowHi_ = tileRows_;
+}
+
+ProbeVolume::~ProbeVolume() = default;
+
+glm::vec3 ProbeVolume::probePosition(int probe) const {
+    return grid_.gridPosition(grid_.coord(probe)) + offset_[size_t(probe)];
+}
+
+void ProbeVolume::writeProbeData(int probe) {
+    float* d = &data_[size_t(probe) * 4];
+    d[0] = offset_[probe].x;
+    d[1] = offset_[probe].y;
+    d[2] = offset_[probe].z;
+    d[3] = float(int(state_[probe]));
+}
+
+// Moves probes out of geometry (towards and past the nearest back face, at most probes.max_relocation x spacing
+// per axis) and away from surfaces closer than kMinFrontDistance x spacing; disables those still inside, and marks
+// unused those with no surface within a cell diagonal (no receiver interpolates them with any weight to speak of).
+void ProbeVolume::place(const Settings& s) {
+    const auto start = std::chrono::steady_clock::now();
+    const float minFront = kMinFrontDistance * grid_.minSpacing();
+    const glm::vec3 maxOffset = s.probeMaxRelocation * grid_.spacing;
+    const float reach = glm::length(grid_.spacing);
+    const float insideFraction = s.probeInsideFraction;
+    std::vector<glm::vec3> dirs(kPlacementRays);
+    for (int i = 0; i < kPlacementRays; ++i) dirs[i] = fibonacciDirection(i, kPlacementRays);
+    std::atomic<uint64_t> rays{0};
+    parallelFor(grid_.count(), threads_, [&](int probe) {
+        const glm::vec3 home = grid_.gridPosition(grid_.coord(probe));
+        glm::vec3 offset(0.0f);
+        ProbeState st = ProbeState::Active;
+        uint64_t traced = 0;
+        for (int iter = 0;; ++iter) {
+            int back = 0;
+            float nearBack = kInf, nearFront = kInf, nearest = kInf;
+            glm::vec3 nearBackDir(0.0f), nearFrontDir(0.0f);
+            for (const glm::vec3& d : dirs) {
+                const ProbeHit h = tracer_.intersect(home + offset, d, 0.0f, kInf);
+                ++traced;
+                if (!h.hit) continue;
+                nearest = std::min(nearest, h.distance);
+                if (h.backFace) {
+                    ++back;
+                    if (h.distance < nearBack) { nearBack = h.distance; nearBackDir = d; }
+                } else if (h.distance < nearFront) {
+                    nearFront = h.distance;
+                    nearFrontDir = d;
+                }
+            }
+            const bool inside = float(back) > insideFraction * float(kPlacementRays);
+            glm::vec3 candidate = offset;
+            if (inside) candidate = offset + nearBackDir * (nearBack + minFront);
+            else if (nearFront < minFront) candidate = offset - nearFrontDir * (minFront - nearFront);
+            const bool canMove = candidate != offset && glm::all(glm::lessThanEqual(glm::abs(candidate), maxOffset));
+            if (iter + 1 < kPlacementIterations && canMove) {
+                offset = candidate;
+                continue;
+            }
+            st = inside ? ProbeState::Inside : (nearest <= reach ? ProbeState::Active : ProbeState::Unused);
+            break;
+        }
+        offset_[probe] = offset;  // each probe writes only its own entries
+        state_[probe] = st;
+        rays.fetch_add(traced);
+    });
+    for (int i = 0; i < grid_.count(); ++i) {
+        writeProbeData(i);
+        if (state_[i] == ProbeState::Active) ++activeCount_;
+    }
+    placementRays_ = rays.load();
+    placementMs_ = msSince(start);
+}
+
+bool ProbeVolume::converging() const {
+    for (size_t i = 0; i < state_.size(); ++i)
+        if (state_[i] == ProbeState::Active && updates_[i] == 0) return true;
+    return false;
+}
+
+void ProbeVolume::resetHistory() { std::fill(updates_.begin(), updates_.end(), 0); }
+
+template <int C>
+glm::vec<C, float> ProbeVolume::sampleAtlas(const std::vector<float>& atlas, int n, int probe,
+                                            const glm::vec2& oct) const {
+    const int tile = n + 2;
+    const size_t width = size_t(tilesPerRow_) * tile;
+    const float fx = float((probe % tilesPerRow_) * tile + 1) + (oct.x * 0.5f + 0.5f) * float(n) - 0.5f;
+    const float fy = float((probe / tilesPerRow_) * tile + 1) + (oct.y * 0.5f + 0.5f) * float(n) - 0.5f;
+    const float x0 = std::floor(fx), y0 = std::floor(fy), tx = fx - x0, ty = fy - y0;
+    const float* row0 = &atlas[(size_t(y0) * width + size_t(x0)) * C];
+    const float* row1 = row0 + width * C;
+    glm::vec<C, float> r;
+    for (int c = 0; c < C; ++c)
+        r[c] = (row0[c] * (1.0f - tx) + row0[C + c] * tx) * (1.0f - ty) + (row1[c] * (1.0f - tx) + row1[C + c] * tx) * ty;
+    return r;
+}
+
+glm::vec3 ProbeVolume::irradiance(const glm::vec3& x, const glm::vec3& n, float* weightSum) const {
+    if (weightSum) *weightSum = 0.0f;
+    if (!finite3(x) || !finite3(n) || !(glm::dot(n, n) > 1e-12f)) return glm::vec3(0.0f);
+    const glm::vec3 biased = x + n * normalBias_;
+    const glm::ivec3 last = grid_.counts - 1;
+    const glm::vec3 g = glm::clamp((biased - grid_.lo) / grid_.spacing - 0.5f, glm::vec3(-1.0f), glm::vec3(last));
+    const glm::ivec3 base = glm::clamp(glm::ivec3(glm::floor(g)), glm::ivec3(0), last - 1);
+    const glm::vec3 alpha = glm::clamp(g - glm::vec3(base), 0.0f, 1.0f);
+    const glm::vec2 octN = octahedral::encode(n);
+    glm::vec3 sum(0.0f);
+    float total = 0.0f;
+    for (int i = 0; i < 8; ++i) {
+        const glm::ivec3 o(i & 1, (i >> 1) & 1, (i >> 2) & 1);
+        const int probe = grid_.index(base + o);
+        if (state_[probe] != ProbeState::Active) continue;
+        const glm::vec3 probePos = grid_.gridPosition(base + o) + offset_[probe];
+        const glm::vec3 tri3 = glm::mix(1.0f - alpha, alpha, glm::vec3(o));
+        const float trilinear = std::max(0.001f, tri3.x * tri3.y * tri3.z);
+        // Smooth back-face term: probes behind the surface count less.
+        const glm::vec3 toProbe = probePos - x;
+        const float toProbeLen = glm::length(toProbe);
+        const float wrap = toProbeLen > 0.0f ? (glm::dot(toProbe / toProbeLen, n) + 1.0f) * 0.5f : 1.0f;
+        float weight = wrap * wrap + 0.2f;
+        // Chebyshev visibility against the probe's depth moments towards the (biased) receiver.
+        const glm::vec3 probeToPoint = biased - probePos;
+        const float dist = glm::length(probeToPoint);
+        if (dist > 0.0f) {
+            const glm::vec2 m = sampleAtlas<2>(depth_, depthN_, probe, octahedral::encode(probeToPoint / dist));
+            if (dist > m.x) {
+                const float variance = std::abs(m.y - m.x * m.x);
+                const float d = dist - m.x;
+                const float chebyshev = variance / (variance + d * d);
+                weight *= std::max(chebyshev * chebyshev * chebyshev, 0.05f);
+            }
+        }
+        weight = std::max(weight, 1e-6f);
+        constexpr float kCrush = 0.2f;  // weights below this fall off cubically (fewer leaks)
+        if (weight < kCrush) weight *= weight * weight / (kCrush * kCrush);
+        weight *= trilinear;
+        sum += weight * glm::vec3(sampleAtlas<4>(irradiance_, irrN_, probe, octN));
+        total += weight;
+    }
+    if (weightSum) *weightSum = total;
+    return total > 0.0f ? sum / total : glm::vec3(0.0f);
+}
+
+ProbeUpdateStats ProbeVolume::update(const Settings& s) {
+    const auto start = std::chrono::steady_clock::now();
+    const double cpuStart = processCpuMs();
+    ProbeUpdateStats stats;
+    const int count = grid_.count();
+    const int raysPerProbe = std::max(1, std::min(s.probeRaysPerProbe, std::max(1, s.probeRaysPerFrame)));
+    const int budget = std::max(1, s.probeRaysPerFrame / raysPerProbe);
+    // The next active probes, round-robin over the grid (probes disabled during updates drop out).
+    std::vector<int> batch;
+    for (int scanned = 0; scanned < count && int(batch.size()) < budget; ++scanned) {
+        const int p = int(cursor_ % size_t(count));
+        cursor_ = (cursor_ + 1) % size_t(count);
+        if (state_[p] == ProbeState::Active) batch.push_back(p);
+    }
+    if (batch.empty()) {
+        ++updateIndex_;
+        stats.milliseconds = msSince(start);
+        return stats;
+    }
+    const std::vector<Light> lights = effectiveLights(scene_, s);
+    const glm::mat3 rotation = randomRotation(seed_, updateIndex_);
+    std::vector<glm::vec3> dirs(static_cast<size_t>(raysPerProbe));
+    for (int i = 0; i < raysPerProbe; ++i) dirs[i] = rotation * fibonacciDirection(i, raysPerProbe);
+    const float insideFraction = s.probeInsideFraction;
+
+    // Per batch slot, as arrays per texel: irradiance sums (r, g, b, weight), depth sums (d, d^2, weight).
+    const size_t irrTexels = irrDirs_.size(), depthTexels = depthDirs_.size();
+    std::vector<float> newIrr(batch.size() * irrTexels * 4, 0.0f), newDepth(batch.size() * depthTexels * 3, 0.0f);
+    std::vector<uint8_t> inside(batch.size(), 0);
+    std::atomic<uint64_t> shadowRays{0};
+    parallelFor(int(batch.size()), threads_, [&](int slot) {
+        const int probe = batch[slot];
+        const glm::vec3 origin = probePosition(probe);
+        float* irr = &newIrr[size_t(slot) * irrTexels * 4];
+        float* dep = &newDepth[size_t(slot) * depthTexels * 3];
+        uint64_t shadow = 0;
+        int back = 0;
+        for (const glm::vec3& d : dirs) {
+            const ProbeHit h = tracer_.intersect(origin, d, 0.0f, kInf);
+            const float distance = h.hit ? std::min(h.distance, maxDistance_) : maxDistance_;
+            bool hasRadiance = !h.backFace;
+            glm::vec3 radiance(0.0f);  // a miss sees nothing (the background lights nothing)
+            if (h.hit && !h.backFace) {
+                // The probes read last update's state only (commit comes after the join): deterministic.
+                const glm::vec3 e = tracer_.directIrradiance(h, lights, shadow) + irradiance(h.position, h.normal);
+                radiance = h.emission + h.albedo * (1.0f / kPi) * e;
+                if (!finite3(radiance)) hasRadiance = false;
+            }
+            back += h.backFace ? 1 : 0;
+            if (hasRadiance)
+                accumulateIrradiance(irrTexels, irrDirs_.x.data(), irrDirs_.y.data(), irrDirs_.z.data(), d, radiance,
+                                     irr, irr + irrTexels, irr + 2 * irrTexels, irr + 3 * irrTexels);
+            accumulateDepth(depthTexels, depthDirs_.x.data(), depthDirs_.y.data(), depthDirs_.z.data(), d, distance,
+                            dep, dep + depthTexels, dep + 2 * depthTexels);
+        }
+        inside[slot] = float(back) > insideFraction * float(dirs.size()) ? 1 : 0;
+        shadowRays.fetch_add(shadow);
+    });
+
+    // Commit: hysteresis blend into the atlases, borders, dirty rows.
+    const float hysteresis = std::min(std::max(s.probeHysteresis, 0.0f), 0.999f);
+    for (size_t slot = 0; slot < batch.size(); ++slot) {
+        const int probe = batch[slot];
+        if (inside[slot]) {  // the update's rays say it is inside geometry after all
+            state_[probe] = ProbeState::Inside;
+            --activeCount_;
+            writeProbeData(probe);
+        }
+        const float k = float(updates_[probe]);
+        const float alpha = std::min(hysteresis, k / (k + kRampUpdates));
+        const int tile = probe % tilesPerRow_, row = probe / tilesPerRow_;
+        const float* irr = &newIrr[slot * irrTexels * 4];
+        const size_t irrW = size_t(tilesPerRow_) * (irrN_ + 2);
+        for (int j = 0; j < irrN_; ++j)
+            for (int i = 0; i < irrN_; ++i) {
+                const size_t t = size_t(j) * irrN_ + i;
+                const float weight = irr[3 * irrTexels + t];
+                if (!(weight > 0.0f)) continue;  // no ray in this hemisphere: keep the history
+                float* dst = &irradiance_[4 * ((size_t(row) * (irrN_ + 2) + 1 + j) * irrW + size_t(tile) * (irrN_ + 2) + 1 + i)];
+                for (int c = 0; c < 3; ++c) {
+                    const float v = kPi * irr[c * irrTexels + t] / weight;
+                    if (std::isfinite(v)) dst[c] = alpha * dst[c] + (1.0f - alpha) * v;
+                }
+            }
+        const float* dep = &newDepth[slot * depthTexels * 3];
+        const size_t depW = size_t(tilesPerRow_) * (depthN_ + 2);
+        for (int j = 0; j < depthN_; ++j)
+            for (int i = 0; i < depthN_; ++i) {
+                const size_t t = size_t(j) * depthN_ + i;
+                const float weight = dep[2 * depthTexels + t];
+                if (!(weight > 0.0f)) continue;
+                float* dst = &depth_[2 * ((size_t(row) * (depthN_ + 2) + 1 + j) * depW + size_t(tile) * (depthN_ + 2) + 1 + i)];
+                const float mean = dep[t] / weight, meanSq = dep[depthTexels + t] / weight;
+                if (std::isfinite(mean) && std::isfinite(meanSq)) {
+                    dst[0] = alpha * dst[0] + (1.0f - alpha) * mean;
+                    dst[1] = alpha * dst[1] + (1.0f - alpha) * meanSq;
+                }
+            }
+        writeBorders(irradiance_, irrN_, 4, probe);
+        writeBorders(depth_, depthN_, 2, probe);
+        ++updates_[probe];
+        if (dirtyRowLo_ >= dirtyRowHi_) {
+            dirtyRowLo_ = row;
+            dirtyRowHi_ = row + 1;
+        } else {
+            dirtyRowLo_ = std::min(dirtyRowLo_, row);
+            dirtyRowHi_ = std::max(dirtyRowHi_, row + 1);
+        }
+    }
+    ++updateIndex_;
+    stats.probesUpdated = int(batch.size());
+    stats.probeRays = uint64_t(batch.size()) * dirs.size();
+    stats.shadowRays = shadowRays.load();
+    stats.milliseconds = msSince(start);
+    stats.cpuMilliseconds = processCpuMs() - cpuStart;
+    return stats;
+}
+
+// The octahedral border: each edge folds onto itself mirrored, each corner is the opposite interior corner, so
+// bilinear filtering across a tile's edge reads the neighbouring directions.
+void ProbeVolume::writeBorders(std::vector<float>& atlas, int n, int ch, int probe) {
+    const size_t width = size_t(tilesPerRow_) * (n + 2);
+    const size_t ox = size_t(probe % tilesPerRow_) * (n + 2), oy = size_t(probe / tilesPerRow_) * (n + 2);
+    auto at = [&](size_t x, size_t y) { return &atlas[(y * width + x) * ch]; };
+    auto interior = [&](int i, int j) { return at(ox + 1 + i, oy + 1 + j); };
+    auto copy = [&](float* dst, const float* src) { std::copy(src, src + ch, dst); };
+    for (int i = 0; i < n; ++i) {
+        copy(at(ox + 1 + i, oy), interior(n - 1 - i, 0));
+        copy(at(ox + 1 + i, oy + n + 1), interior(n - 1 - i, n - 1));
+        copy(at(ox, oy + 1 + i), interior(0, n - 1 - i));
+        copy(at(ox + n + 1, oy + 1 + i), interior(n - 1, n - 1 - i));
+    }
+    copy(at(ox, oy), interior(n - 1, n - 1));
+    copy(at(ox + n + 1, oy), interior(0, n - 1));
+    copy(at(ox, oy + n + 1), interior(n - 1, 0));
+    copy(at(ox + n + 1, oy + n + 1), interior(0, 0));
+}
+
+}  // namespace deepgi

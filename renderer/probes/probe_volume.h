@@ -1,0 +1,185 @@
+#pragma once
+// World-space irradiance probes (DDGI: Majercik et al., "Dynamic Diffuse Global Illumination with Ray-Traced
+// Irradiance Fields", JCGT 2019): the fallback for indirect light where the screen holds no data.
+//
+// A grid fit to the scene's bounds; each probe keeps an octahedral map of irradiance and one of depth moments
+// (mean distance, mean squared distance), updated round-robin by rays traced on the CPU with Embree, a bounded
+// number per frame. A ray's radiance is what the path tracer computes at its first hit with the probes standing
+// in for the rest of the path: emission + albedo/pi * (direct irradiance with shadow rays + the probes' own
+// irradiance at the hit), so each update adds a bounce. Sampling weighs the 8 surrounding probes by trilinear
+// weight, a smooth back-face term and a Chebyshev visibility test on the depth moments (no light through walls).
+//
+// What is stored is irradiance E (W/m^2), linear: the indirect radiance of a Lambertian receiver is albedo/pi * E.
+// The same sampling exists in C++ (irradiance()) and in GLSL (shaders/probe_volume.glsl, probeIrradiance()).
+//
+// Textures (CPU arrays laid out as GL textures, row 0 first; probe i owns tile (i % tilesPerRow, i / tilesPerRow)):
+//   "Probe Irradiance"  GL_RGBA32F, (tilesPerRow * (I+2)) x (tileRows * (I+2)), I = probes.irradiance_texels:
+//                       rgb irradiance per octahedral direction, a = 1; a 1-texel octahedral border per tile.
+//   "Probe Depth"       GL_RG32F, (tilesPerRow * (D+2)) x (tileRows * (D+2)), D = probes.depth_texels:
+//                       r = mean distance, g = mean squared distance to the first surface (scene units).
+//   "Probe Data"        GL_RGBA32F, tilesPerRow x tileRows: xyz = the probe's offset from its grid position
+//                       (scene units), w = ProbeState as a float (1 = sampled; 0, -1 = not).
+// RGBA16F also works for the irradiance (uploadTextures() sends floats, the driver converts) while it stays below
+// 65504; the depth needs RG32F (squared distances pass 65504 at 256 scene units).
+//
+// The caller decides whether to use it (probes.enabled). Cost, 2 cores: ~1.7-2.3 us of CPU per probe ray with its
+// shadow rays, texel updates and bounce lookups (16384 rays/frame ~ 30-38 ms CPU on the Cornell box and the atrium).
+// One difference from the path tracer, on purpose: probe rays stop at back faces of single-sided surfaces (they
+// count for depth and as votes that the probe is inside geometry, not for irradiance).
+#include "renderer/core/settings.h"
+#include "renderer/probes/probe_tracer.h"
+#include "renderer/scene/scene.h"
+
+#include <glad/gl.h>
+
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace deepgi {
+
+// Probes sit at cell centres: origin + (i + 0.5) * spacing covers the bounds, at least 2 per axis.
+struct ProbeGrid {
+    glm::ivec3 counts{2};
+    glm::vec3 lo{0.0f};        // the corner of the covered box; probe (0,0,0) is at lo + spacing / 2
+    glm::vec3 spacing{1.0f};   // per axis, scene units
+    float requestedSpacing = 1.0f;  // what the settings asked for, scene units
+    bool coarsened = false;    // spacing grew so that the count fits probes.max_count
+    int count() const { return counts.x * counts.y * counts.z; }
+    int index(const glm::ivec3& c) const { return c.x + counts.x * (c.y + counts.y * c.z); }
+    glm::ivec3 coord(int i) const { return {i % counts.x, (i / counts.x) % counts.y, i / (counts.x * counts.y)}; }
+    glm::vec3 gridPosition(const glm::ivec3& c) const { return lo + (glm::vec3(c) + 0.5f) * spacing; }
+    float minSpacing() const { return std::min(spacing.x, std::min(spacing.y, spacing.z)); }
+};
+
+// Throws std::runtime_error when the bounds are invalid or not finite, or the spacing is not positive.
+ProbeGrid fitProbeGrid(const Aabb& bounds, const Settings& settings);
+
+enum class ProbeState : int8_t {
+    Active = 1,   // updated and sampled
+    Inside = 0,   // inside geometry (too many back faces even after moving it): never updated nor sampled
+    Unused = -1,  // no surface within a cell diagonal: no receiver needs it, never updated nor sampled
+};
+
+struct ProbeUpdateStats {
+    int probesUpdated = 0;
+    uint64_t probeRays = 0;   // rays cast from probes (bounded by probes.rays_per_frame)
+    uint64_t shadowRays = 0;  // shadow rays cast from their hits towards the lights
+    double milliseconds = 0.0;     // wall time
+    double cpuMilliseconds = 0.0;  // CPU time of the process during the update (all its threads)
+};
+
+// std140 mirror of the GLSL block ProbeVolumeUniforms (shaders/probe_volume.glsl).
+struct ProbeVolumeUniforms {
+    float lo[4];          // xyz grid corner; w = normal bias (scene units)
+    float spacing[4];     // xyz per-axis spacing; w = 1 once every active probe has been updated, else 0
+    int32_t counts[4];    // xyz probe counts; w = tiles per atlas row
+    int32_t texels[4];    // x = irradiance interior texels, y = depth interior texels, z = active probes
+};
+static_assert(sizeof(ProbeVolumeUniforms) == 64, "std140 layout");
+
+struct ProbeTextureDesc {
+    std::string name;       // "Probe Irradiance", "Probe Depth", "Probe Data"
+    GLenum internalFormat;  // GL_RGBA32F, GL_RG32F, GL_RGBA32F
+    GLenum uploadFormat;    // GL_RGBA, GL_RG, GL_RGBA (type GL_FLOAT)
+    int width, height, channels;
+    const float* data;      // width * height * channels floats, row 0 first; valid until the volume changes
+    std::string description;
+};
+
+class ProbeVolume {
+public:
+    // Builds the Embree scene, fits the grid and places the probes (moves or disables those inside geometry),
+    // tracing a fixed set of rays from each. The Scene must outlive the volume. threads: 0 = all cores. Results
+    // depend on the seed only, never on the thread count. Throws std::runtime_error on an empty or non-finite
+    // scene or an Embree failure.
+    ProbeVolume(const Scene& scene, const Settings& settings, uint64_t seed = 1, int threads = 0);
+    ~ProbeVolume();
+    ProbeVolume(const ProbeVolume&) = delete;
+    ProbeVolume& operator=(const ProbeVolume&) = delete;
+
+    // True when a settings change needs a new ProbeVolume (grid, texel counts, placement); the other probes.*
+    // settings and the lights are read by every update().
+    static bool layoutChanged(const Settings& a, const Settings& b);
+
+    // One frame's work: the next active probes round-robin, probes.rays_per_frame / probes.rays_per_probe of
+    // them (at least one; a probe's rays are capped at probes.rays_per_frame), each with probes.rays_per_probe
+    // rays in a direction set rotated at random every update. Lights come from effectiveLights(scene, settings).
+    ProbeUpdateStats update(const Settings& settings);
+    // Restarts every probe's history (e.g. after the lights moved): the next update of a probe replaces it.
+    void resetHistory();
+
+    // Irradiance at world position x on a surface of unit normal n, as shaders/probe_volume.glsl computes it.
+    // Safe from many threads, not during update().
+    // weightSum (optional) receives the total weight of the probes used (0 = no probe could answer).
+    glm::vec3 irradiance(const glm::vec3& x, const glm::vec3& n, float* weightSum = nullptr) const;
+
+    const ProbeGrid& grid() const { return grid_; }
+    int probeCount() const { return grid_.count(); }
+    int activeProbeCount() const { return activeCount_; }
+    ProbeState state(int probe) const { return state_[probe]; }
+    glm::vec3 probePosition(int probe) const;  // grid position + relocation offset
+    glm::vec3 probeOffset(int probe) const { return offset_[probe]; }
+    int updatesOf(int probe) const { return updates_[probe]; }
+    uint64_t updateCount() const { return updateIndex_; }
+    bool converging() const;  // some active probe has not been updated yet
+    float normalBias() const { return normalBias_; }
+    // Rays cast while placing the probes, and how long it took.
+    uint64_t placementRays() const { return placementRays_; }
+    double placementMilliseconds() const { return placementMs_; }
+
+    // The three textures, as described at the top of this file.
+    std::vector<ProbeTextureDesc> textures() const;
+    ProbeVolumeUniforms uniforms() const;
+    // glTextureSubImage2D into textures allocated with (at least) the sizes of textures(): the tile rows the
+    // updates since the last upload changed (everything with all = true or on the first call). 0 = skip.
+    void uploadTextures(GLuint irradianceTex, GLuint depthTex, GLuint dataTex, bool all = false);
+    // glNamedBufferSubData of uniforms() into a uniform buffer of at least sizeof(ProbeVolumeUniforms).
+    void uploadUniforms(GLuint uniformBuffer) const;
+
+    // Atlas geometry (texel units).
+    int tilesPerRow() const { return tilesPerRow_; }
+    int tileRows() const { return tileRows_; }
+    int irradianceTexels() const { return irrN_; }
+    int depthTexels() const { return depthN_; }
+    const std::vector<float>& irradianceAtlas() const { return irradiance_; }  // RGBA
+    const std::vector<float>& depthAtlas() const { return depth_; }            // RG
+    const std::vector<float>& probeData() const { return data_; }              // RGBA
+
+private:
+    void place(const Settings& settings);
+    void writeBorders(std::vector<float>& atlas, int n, int channels, int probe);
+    void writeProbeData(int probe);
+    // Bilinear sample (as GL_LINEAR) of probe's tile at octahedral coordinate oct in [-1,1]^2.
+    template <int Channels>
+    glm::vec<Channels, float> sampleAtlas(const std::vector<float>& atlas, int n, int probe, const glm::vec2& oct) const;
+
+    const Scene& scene_;
+    ProbeTracer tracer_;
+    ProbeGrid grid_;
+    uint64_t seed_;
+    int threads_;
+    int irrN_, depthN_;
+    float normalBias_, maxDistance_;
+    int tilesPerRow_ = 1, tileRows_ = 1;
+    std::vector<ProbeState> state_;
+    std::vector<glm::vec3> offset_;
+    std::vector<int> updates_;
+    int activeCount_ = 0;
+    size_t cursor_ = 0;  // round-robin position over the grid
+    uint64_t updateIndex_ = 0;
+    std::vector<float> irradiance_, depth_, data_;
+    struct TexelDirections {  // interior texel directions, row-major per tile, as arrays for SIMD loops
+        std::vector<float> x, y, z;  // padded with zero vectors to a multiple of 8
+        size_t count = 0;            // real texels
+        size_t size() const { return x.size(); }
+    };
+    TexelDirections irrDirs_, depthDirs_;
+    int dirtyRowLo_ = 0, dirtyRowHi_ = 0;         // tile rows [lo, hi) changed since the last upload
+    bool uploadedOnce_ = false;
+    uint64_t placementRays_ = 0;
+    double placementMs_ = 0.0;
+};
+
+}  // namespace deepgi

@@ -1,0 +1,109 @@
+// World-space irradiance probes (DDGI), the GLSL side of renderer/probes/probe_volume.h; the same math as
+// ProbeVolume::irradiance().
+//
+//   vec3 probeIrradiance(vec3 X, vec3 n)        irradiance (W/m^2) at world position X on a surface of unit normal
+//                                                n; a Lambertian receiver's indirect radiance is albedo/PI * it.
+//   vec4 probeIrradianceWeighted(vec3 X, vec3 n) rgb as above, a = the summed probe weight (0 = no probe answers;
+//                                                about 1 where the 8 surrounding probes all see X).
+//
+// Inputs (the including shader may #define the binding points before including this file):
+//   uniform block ProbeVolumeUniforms, std140, binding PROBE_VOLUME_UBO_BINDING (default 2), filled from
+//     ProbeVolume::uniforms() (C++ struct ProbeVolumeUniforms, 64 bytes):
+//       vec4  uProbeLo;       xyz = corner of the covered box (probe (0,0,0) is at uProbeLo + spacing/2),
+//                             w = normal bias (scene units)
+//       vec4  uProbeSpacing;  xyz = spacing per axis (scene units), w = 1 once every active probe was updated
+//       ivec4 uProbeCounts;   xyz = probes per axis, w = atlas tiles per row (probe i: tile (i % w, i / w))
+//       ivec4 uProbeTexels;   x = irradiance interior texels I, y = depth interior texels D, z = active probes
+//   sampler2D uProbeIrradiance  unit PROBE_IRRADIANCE_UNIT (default 2): "Probe Irradiance", RGBA32F,
+//                               tiles of (I+2)^2 texels, GL_LINEAR, clamp to edge
+//   sampler2D uProbeDepth       unit PROBE_DEPTH_UNIT (default 3): "Probe Depth", RG32F, tiles of (D+2)^2,
+//                               GL_LINEAR, clamp to edge
+//   sampler2D uProbeData        unit PROBE_DATA_UNIT (default 5): "Probe Data", RGBA32F, one texel per probe,
+//                               read with texelFetch (xyz offset, w state: > 0.5 = active)
+#ifndef PROBE_VOLUME_UBO_BINDING
+#define PROBE_VOLUME_UBO_BINDING 2
+#endif
+#ifndef PROBE_IRRADIANCE_UNIT
+#define PROBE_IRRADIANCE_UNIT 2
+#endif
+#ifndef PROBE_DEPTH_UNIT
+#define PROBE_DEPTH_UNIT 3
+#endif
+#ifndef PROBE_DATA_UNIT
+#define PROBE_DATA_UNIT 5
+#endif
+
+layout(std140, binding = PROBE_VOLUME_UBO_BINDING) uniform ProbeVolumeUniforms {
+    vec4 uProbeLo;
+    vec4 uProbeSpacing;
+    ivec4 uProbeCounts;
+    ivec4 uProbeTexels;
+};
+layout(binding = PROBE_IRRADIANCE_UNIT) uniform sampler2D uProbeIrradiance;
+layout(binding = PROBE_DEPTH_UNIT) uniform sampler2D uProbeDepth;
+layout(binding = PROBE_DATA_UNIT) uniform sampler2D uProbeData;
+
+float probeSignNotZero(float v) { return v >= 0.0 ? 1.0 : -1.0; }
+
+// Unit direction -> [-1,1]^2 (renderer/probes/octahedral.h).
+vec2 probeOctEncode(vec3 d) {
+    vec2 p = d.xy / (abs(d.x) + abs(d.y) + abs(d.z));
+    if (d.z < 0.0) p = vec2((1.0 - abs(p.y)) * probeSignNotZero(p.x), (1.0 - abs(p.x)) * probeSignNotZero(p.y));
+    return p;
+}
+
+// Texture coordinate of direction d in probe `probe`'s tile of an atlas with n interior texels per tile edge.
+vec2 probeAtlasUv(int probe, int n, vec3 d, vec2 atlasSize) {
+    int tile = n + 2;
+    vec2 origin = vec2((probe % uProbeCounts.w) * tile + 1, (probe / uProbeCounts.w) * tile + 1);
+    return (origin + (probeOctEncode(d) * 0.5 + 0.5) * float(n)) / atlasSize;
+}
+
+vec4 probeIrradianceWeighted(vec3 X, vec3 n) {
+    if (any(isnan(X)) || any(isinf(X)) || any(isnan(n)) || any(isinf(n)) || !(dot(n, n) > 1e-12)) return vec4(0.0);
+    vec3 spacing = uProbeSpacing.xyz;
+    ivec3 last = uProbeCounts.xyz - 1;
+    vec3 biased = X + n * uProbeLo.w;
+    vec3 g = clamp((biased - uProbeLo.xyz) / spacing - 0.5, vec3(-1.0), vec3(last));
+    ivec3 base = clamp(ivec3(floor(g)), ivec3(0), last - 1);
+    vec3 alpha = clamp(g - vec3(base), 0.0, 1.0);
+    vec2 irrSize = vec2(textureSize(uProbeIrradiance, 0)), depthSize = vec2(textureSize(uProbeDepth, 0));
+    vec3 sum = vec3(0.0);
+    float total = 0.0;
+    for (int i = 0; i < 8; ++i) {
+        ivec3 o = ivec3(i & 1, (i >> 1) & 1, (i >> 2) & 1);
+        ivec3 c = base + o;
+        int probe = c.x + uProbeCounts.x * (c.y + uProbeCounts.y * c.z);
+        vec4 data = texelFetch(uProbeData, ivec2(probe % uProbeCounts.w, probe / uProbeCounts.w), 0);
+        if (data.w < 0.5) continue;  // inside geometry or unused
+        vec3 probePos = uProbeLo.xyz + (vec3(c) + 0.5) * spacing + data.xyz;
+        vec3 tri3 = mix(1.0 - alpha, alpha, vec3(o));
+        float trilinear = max(0.001, tri3.x * tri3.y * tri3.z);
+        // Smooth back-face term: probes behind the surface count less.
+        vec3 toProbe = probePos - X;
+        float toProbeLen = length(toProbe);
+        float wrap = toProbeLen > 0.0 ? (dot(toProbe / toProbeLen, n) + 1.0) * 0.5 : 1.0;
+        float weight = wrap * wrap + 0.2;
+        // Chebyshev visibility against the probe's depth moments towards the (biased) receiver.
+        vec3 probeToPoint = biased - probePos;
+        float dist = length(probeToPoint);
+        if (dist > 0.0) {
+            vec2 m = texture(uProbeDepth, probeAtlasUv(probe, uProbeTexels.y, probeToPoint / dist, depthSize)).rg;
+            if (dist > m.x) {
+                float variance = abs(m.y - m.x * m.x);
+                float d = dist - m.x;
+                float chebyshev = variance / (variance + d * d);
+                weight *= max(chebyshev * chebyshev * chebyshev, 0.05);
+            }
+        }
+        weight = max(weight, 1e-6);
+        const float crush = 0.2;  // weights below this fall off cubically (fewer leaks)
+        if (weight < crush) weight *= weight * weight / (crush * crush);
+        weight *= trilinear;
+        sum += weight * texture(uProbeIrradiance, probeAtlasUv(probe, uProbeTexels.x, n, irrSize)).rgb;
+        total += weight;
+    }
+    return total > 0.0 ? vec4(sum / total, total) : vec4(0.0);
+}
+
+vec3 probeIrradiance(vec3 X, vec3 n) { return probeIrradianceWeighted(X, n).rgb; }
