@@ -7,7 +7,9 @@
 #include "renderer/passes/input_radiance_pass.h"
 #include "renderer/passes/radiosity_gather_pass.h"
 #include "renderer/passes/reproject_radiance_pass.h"
+#include "renderer/passes/probe_update_pass.h"
 #include "renderer/passes/shadow_map_pass.h"
+#include "renderer/probes/probe_volume.h"
 #include "renderer/passes/temporal_blend_pass.h"
 #include "renderer/scene/lighting.h"
 #include "renderer/scene/scene_gpu.h"
@@ -52,6 +54,7 @@ float projScale(const Camera& c, int height) {
 Renderer::Renderer(RendererOptions options) : options_(std::move(options)) {
     shaders_ = std::make_unique<gl::ShaderLibrary>(options_.shaderDir);
     passes_.push_back(std::make_unique<ShadowMapPass>());
+    passes_.push_back(std::make_unique<ProbeUpdatePass>());
     passes_.push_back(std::make_unique<DeepGBufferPass>());
     passes_.push_back(std::make_unique<ReprojectRadiancePass>());
     passes_.push_back(std::make_unique<InputRadiancePass>());
@@ -64,6 +67,8 @@ Renderer::Renderer(RendererOptions options) : options_(std::move(options)) {
     frameUbo_ = gl::createBuffer("frame uniforms");
     glNamedBufferData(frameUbo_.id(), sizeof(FrameUniformsStd140), nullptr, GL_DYNAMIC_DRAW);
     lightSsbo_ = gl::createBuffer("lights");
+    probeUbo_ = gl::createBuffer("probe volume uniforms");
+    glNamedBufferData(probeUbo_.id(), sizeof(ProbeVolumeUniforms), nullptr, GL_DYNAMIC_DRAW);
     scene_ = std::make_shared<Scene>();
     sceneGpu_ = std::make_unique<SceneGpu>(*scene_);
 }
@@ -73,6 +78,7 @@ Renderer::~Renderer() = default;
 void Renderer::setScene(std::shared_ptr<const Scene> scene) {
     scene_ = scene ? std::move(scene) : std::make_shared<Scene>();
     sceneGpu_ = std::make_unique<SceneGpu>(*scene_);
+    probes_.reset();  // the volume traces the old scene
     shadowKey_ = 0;
     configValid_ = false;
     historyValid_ = false;
@@ -102,6 +108,14 @@ PipelineConfig Renderer::makeConfig(const Settings& s) const {
     c.temporalFirst = s.filterOrder == 1 && s.temporal;
     c.depthPeel = s.generation == 1 && s.layer2;
     c.ao = s.aoEnabled;
+    if (probes_) {
+        c.probes = true;
+        for (const auto& t : probes_->textures()) {
+            int* size = t.name == "Probe Irradiance" ? c.probeIrradianceSize : t.name == "Probe Depth" ? c.probeDepthSize : c.probeDataSize;
+            size[0] = t.width;
+            size[1] = t.height;
+        }
+    }
     for (const auto& l : effectiveLights(*scene_, s)) {
         if (l.type == LightType::Point) ++c.shadowCubeLayers;
         else ++c.shadowMapLayers;
@@ -201,6 +215,14 @@ void Renderer::prepare(const Settings& user) { prepareResolved(resolveLengths(us
 
 void Renderer::prepareResolved(const Settings& s) {
     if (width_ <= 0 || height_ <= 0) return;
+    // The probe volume exists only where it can help: indirect light on, a scene with surfaces.
+    const bool wantProbes = s.probesEnabled && s.indirect && scene_->bounds.valid() && scene_->bounds.radius() > 0.0f;
+    if (!wantProbes) probes_.reset();
+    else if (!probes_ || ProbeVolume::layoutChanged(probeSettings_, s)) {
+        probes_.reset();
+        probes_ = std::make_unique<ProbeVolume>(*scene_, s);
+        probeSettings_ = s;
+    }
     PipelineConfig c = makeConfig(s);
     if (!configValid_ || !(c == config_)) historyValid_ = false;  // buffers change meaning
     config_ = c;
@@ -286,7 +308,7 @@ FrameContext Renderer::makeContext(const Settings& s) {
     uploadFrameUniforms(s);
     return FrameContext{s, config_, textures_, *shaders_, fbos_, *sceneGpu_, fullscreenVao_.id(), lightSsbo_.id(),
                         lightCount_, casters_, shadowKey_, width_, height_, historyValid_,
-                        s.varyTaps ? float(frameIndex_ % 1024) * 0.618034f : 0.0f};
+                        s.varyTaps ? float(frameIndex_ % 1024) * 0.618034f : 0.0f, probes_.get(), probeUbo_.id()};
 }
 
 void Renderer::executePass(const std::string& passName, const Settings& user) {

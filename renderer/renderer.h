@@ -15,6 +15,8 @@
 
 namespace deepgi {
 
+class ProbeVolume;
+
 enum class TimingMode {
     None,       // no synchronisation
     WallClock,  // glFinish around each pass (llvmpipe: timer queries miss vertex work)
@@ -69,6 +71,7 @@ public:
     const std::vector<PassTiming>& timings() const { return timings_; }
     const std::vector<std::unique_ptr<RenderPass>>& passes() const { return passes_; }
     const PipelineConfig& config() const { return config_; }
+    const ProbeVolume* probeVolume() const { return probes_.get(); }
     uint64_t frameIndex() const { return frameIndex_; }
     int lastGeometryPasses() const;
     void setTimingMode(TimingMode m) { options_.timing = m; }
@@ -98,7 +101,9 @@ private:
     PipelineConfig config_;
     bool configValid_ = false;
     gl::VertexArrayHandle fullscreenVao_;
-    gl::BufferHandle frameUbo_, lightSsbo_;
+    gl::BufferHandle frameUbo_, lightSsbo_, probeUbo_;
+    std::unique_ptr<ProbeVolume> probes_;  // the world-space fallback (null when off)
+    Settings probeSettings_;               // what probes_ was laid out with
     int lightCount_ = 0;
     std::vector<ShadowCaster> casters_;
     uint64_t shadowKey_ = 0;

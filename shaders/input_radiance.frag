@@ -12,6 +12,9 @@ uniform int uLayer;
 uniform int uHasEmission;
 uniform int uFeedback;      // add last frame's indirect light (multi-bounce)
 uniform float uDamping;
+#ifdef DEEPGI_PROBES
+#include "probe_volume.glsl"
+#endif
 layout(location = 0) out vec3 oRadiance;
 void main() {
     ivec2 pix = ivec2(gl_FragCoord.xy);
@@ -22,6 +25,10 @@ void main() {
     vec3 albedo = texelFetch(uAlbedo, ivec3(pix, uLayer), 0).rgb;
     vec3 E = directIrradiance(P, n);
     if (uFeedback != 0 && uLayer == 0) E += (1.0 - uDamping) * texelFetch(uReprojected, pix, 0).rgb;
+#ifdef DEEPGI_PROBES
+    // Layer 2 has no gathered light of its own, nor layer 1 before there is a history: the probes give theirs.
+    else E += (1.0 - uDamping) * probeIrradiance(P, n);
+#endif
     vec3 B = albedo / PI * E;
     if (uHasEmission != 0) B += texelFetch(uEmission, ivec3(pix, uLayer), 0).rgb;
     oRadiance = sanitizeR11G11B10(B, gl_FragCoord.xy);

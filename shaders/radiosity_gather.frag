@@ -25,6 +25,9 @@ layout(location = 0) out vec3 oIrradiance;
 layout(location = 1) out float oCoverage;
 uniform float uThickness;      // assumed thickness behind a layer-1 surface where layer 2 does not bound it
 uniform int uVisibilitySteps;  // march steps per tap (0 = no visibility test)
+#ifdef DEEPGI_PROBES
+#include "probe_volume.glsl"
+#endif
 
 // Eye depth (distance along the view axis) of a world point.
 float eyeZ(vec3 P) { return dot(P - uCameraPos.xyz, uCameraForward.xyz); }
@@ -181,6 +184,11 @@ void main() {
         }
 #endif
     }
+    covered = clamp(covered, 0.0, 1.0);
+#ifdef DEEPGI_PROBES
+    // The directions the screen did not cover (off screen, beyond the radius, hidden) take the probes' light.
+    sum += (1.0 - covered) * probeIrradiance(X, nX);
+#endif
     oIrradiance = sanitizeR11G11B10(sum, gl_FragCoord.xy);
-    oCoverage = clamp(covered, 0.0, 1.0);
+    oCoverage = covered;
 }

@@ -9,7 +9,7 @@ namespace deepgi {
 
 static bool sameDecl(const TextureDecl& a, const TextureDecl& b) {
     return a.name == b.name && a.layerNames == b.layerNames && a.format == b.format && a.target == b.target &&
-           a.size == b.size && a.levels == b.levels;
+           a.size == b.size && a.levels == b.levels && a.fixedWidth == b.fixedWidth && a.fixedHeight == b.fixedHeight;
 }
 
 uint64_t textureBytes(const TextureDecl& d, int w, int h, int levels) {
@@ -38,8 +38,8 @@ void TextureRegistry::reconcile(const std::vector<TextureDecl>& decls, int scree
     uint64_t total = 0;
     for (const auto& d : decls) {
         const bool cube = d.target == GL_TEXTURE_CUBE_MAP_ARRAY;
-        const int w = d.size == SizeRule::Screen ? screenW : shadowSize;
-        const int h = d.size == SizeRule::Screen ? screenH : shadowSize;
+        const int w = d.size == SizeRule::Screen ? screenW : d.size == SizeRule::Fixed ? d.fixedWidth : shadowSize;
+        const int h = d.size == SizeRule::Screen ? screenH : d.size == SizeRule::Fixed ? d.fixedHeight : shadowSize;
         const int limit = cube ? maxCube : maxSize;
         if (limit > 0 && (w > limit || h > limit))
             throw std::runtime_error("cannot allocate texture '" + d.name + "' at " + std::to_string(w) + "x" +
@@ -63,8 +63,8 @@ void TextureRegistry::reconcile(const std::vector<TextureDecl>& decls, int scree
     std::vector<Entry> next;
     next.reserve(decls.size());
     for (const auto& d : decls) {
-        const int w = d.size == SizeRule::Screen ? screenW : shadowSize;
-        const int h = d.size == SizeRule::Screen ? screenH : shadowSize;
+        const int w = d.size == SizeRule::Screen ? screenW : d.size == SizeRule::Fixed ? d.fixedWidth : shadowSize;
+        const int h = d.size == SizeRule::Screen ? screenH : d.size == SizeRule::Fixed ? d.fixedHeight : shadowSize;
         if (w <= 0 || h <= 0) throw std::runtime_error("texture '" + d.name + "' would have size 0");
         auto it = std::find_if(entries_.begin(), entries_.end(), [&](const Entry& e) { return e.decl.name == d.name; });
         if (it != entries_.end() && it->texture && sameDecl(it->decl, d) && it->width == w && it->height == h) {

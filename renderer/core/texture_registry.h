@@ -9,7 +9,7 @@
 
 namespace deepgi {
 
-enum class SizeRule { Screen, ShadowMap };
+enum class SizeRule { Screen, ShadowMap, Fixed };  // Fixed: TextureDecl::fixedWidth x fixedHeight
 // Color: linear [0,1] colour (albedo); Display: already sRGB-encoded for the screen.
 enum class Visualize { Color, Radiance, Depth, Normal, ShadowDepth, Display };
 // Which total a texture counts towards in the memory report.
@@ -25,6 +25,7 @@ struct TextureDecl {
     MemoryGroup group = MemoryGroup::Extra;
     Visualize vis = Visualize::Color;
     std::string description;
+    int fixedWidth = 0, fixedHeight = 0;  // SizeRule::Fixed only
     int layers() const { return int(layerNames.size()); }
 };
 

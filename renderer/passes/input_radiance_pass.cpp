@@ -1,5 +1,7 @@
 #include "renderer/passes/input_radiance_pass.h"
 
+#include "renderer/passes/probe_update_pass.h"
+
 #include <algorithm>
 
 namespace deepgi {
@@ -12,7 +14,10 @@ void InputRadiancePass::declare(const PipelineConfig&, std::vector<TextureDecl>&
 
 void InputRadiancePass::execute(FrameContext& ctx) {
     const GLuint radiance = ctx.textures.id("Input Radiance");
-    GLuint prog = ctx.shaders.get({"fullscreen.vert", "", "input_radiance.frag", "", {}});
+    std::vector<std::string> defines;
+    if (ctx.config.probes) defines.push_back("DEEPGI_PROBES");
+    GLuint prog = ctx.shaders.get({"fullscreen.vert", "", "input_radiance.frag", "", defines});
+    if (ctx.config.probes) bindProbeVolume(ctx);
     ctx.setLightUniforms(prog);
     setUniform(prog, "uHasEmission", ctx.config.emission ? 1 : 0);
     setUniform(prog, "uFeedback", ctx.config.indirect && ctx.historyValid ? 1 : 0);

@@ -2,11 +2,15 @@
 
 #include <glm/gtc/type_ptr.hpp>
 
+#include <algorithm>
+
 namespace deepgi {
 
 bool PipelineConfig::operator==(const PipelineConfig& o) const {
     return layer2 == o.layer2 && emission == o.emission && indirect == o.indirect && seedComposite == o.seedComposite &&
            blur == o.blur && temporal == o.temporal && temporalFirst == o.temporalFirst && depthPeel == o.depthPeel && ao == o.ao &&
+           probes == o.probes && std::equal(probeIrradianceSize, probeIrradianceSize + 2, o.probeIrradianceSize) &&
+           std::equal(probeDepthSize, probeDepthSize + 2, o.probeDepthSize) && std::equal(probeDataSize, probeDataSize + 2, o.probeDataSize) &&
            shadowMapLayers == o.shadowMapLayers && shadowCubeLayers == o.shadowCubeLayers;
 }
 

@@ -14,6 +14,8 @@
 
 namespace deepgi {
 
+class ProbeVolume;
+
 // What this frame's pipeline contains, derived from the scene and the settings (model only what is needed).
 struct PipelineConfig {
     bool layer2 = true;
@@ -25,6 +27,8 @@ struct PipelineConfig {
     bool temporalFirst = false;
     bool depthPeel = false;
     bool ao = false;           // the ambient-occlusion pass runs
+    bool probes = false;       // the world-space probe fallback runs (probes.enabled, indirect on)
+    int probeIrradianceSize[2] = {0, 0}, probeDepthSize[2] = {0, 0}, probeDataSize[2] = {0, 0};
     int shadowMapLayers = 0;   // directional + spot lights
     int shadowCubeLayers = 0;  // point lights
     bool operator==(const PipelineConfig& o) const;
@@ -70,6 +74,8 @@ struct FrameContext {
     int width, height;
     bool historyValid;   // false on the first frame and after a camera cut
     float time;          // seconds of animation for temporally varying taps
+    ProbeVolume* probes; // the world-space fallback (null when config.probes is false)
+    GLuint probeUniforms;  // its uniform block (probe_volume.glsl), bound at 2
 
     // Draws a full-screen triangle into fbo with a viewport of w x h.
     void drawFullscreen(GLuint program, GLuint fbo, int w, int h) const;

@@ -1,5 +1,7 @@
 #include "renderer/passes/radiosity_gather_pass.h"
 
+#include "renderer/passes/probe_update_pass.h"
+
 #include <algorithm>
 
 namespace deepgi {
@@ -28,6 +30,7 @@ void RadiosityGatherPass::execute(FrameContext& ctx) {
     // Layer 2 off: a variant without the layer-2 code (llvmpipe runs a branch on a uniform anyway).
     std::vector<std::string> defines;
     if (!ctx.config.layer2) defines.push_back("DEEPGI_SINGLE_LAYER");
+    if (ctx.config.probes) defines.push_back("DEEPGI_PROBES");
     GLuint prog = ctx.shaders.get({"fullscreen.vert", "", "radiosity_gather.frag", "", defines});
     const int levels = ctx.textures.entry("Input Radiance").decl.levels;
     setUniform(prog, "uNumSamples", s.numSamples);
@@ -41,6 +44,7 @@ void RadiosityGatherPass::execute(FrameContext& ctx) {
     setUniform(prog, "uTime", s.varyTaps ? ctx.time : 0.0f);
     setUniform(prog, "uThickness", s.minSeparation);
     setUniform(prog, "uVisibilitySteps", s.visibilitySteps);
+    if (ctx.config.probes) bindProbeVolume(ctx);
     glBindTextureUnit(4, ctx.textures.id("Depth"));
     glBindTextureUnit(8, ctx.textures.id("Normal"));
     glBindTextureUnit(11, ctx.textures.id("Input Radiance"));

@@ -350,6 +350,7 @@ glm::vec3 ProbeVolume::irradiance(const glm::vec3& x, const glm::vec3& n, float*
 }
 
 ProbeUpdateStats ProbeVolume::update(const Settings& s) {
+    const float feedback = 1.0f - std::clamp(s.damping, 0.0f, 1.0f);
     const auto start = std::chrono::steady_clock::now();
     const double cpuStart = processCpuMs();
     ProbeUpdateStats stats;
@@ -393,7 +394,8 @@ ProbeUpdateStats ProbeVolume::update(const Settings& s) {
             glm::vec3 radiance(0.0f);  // a miss sees nothing (the background lights nothing)
             if (h.hit && !h.backFace) {
                 // The probes read last update's state only (commit comes after the join): deterministic.
-                const glm::vec3 e = tracer_.directIrradiance(h, lights, shadow) + irradiance(h.position, h.normal);
+                // Multi-bounce through the probes themselves, damped as the screen's feedback is (1 = one bounce).
+                const glm::vec3 e = tracer_.directIrradiance(h, lights, shadow) + feedback * irradiance(h.position, h.normal);
                 radiance = h.emission + h.albedo * (1.0f / kPi) * e;
                 if (!finite3(radiance)) hasRadiance = false;
             }
