@@ -3,9 +3,9 @@
 // spiral taps, world radius projected to pixels, per-tap mip level, normal tests, the brighter valid layer per
 // tap, and E = 2*pi / M_used * sum(B * cos).
 #include "common.glsl"
-layout(binding = 4) uniform sampler2DArray uDepth;
-layout(binding = 8) uniform sampler2DArray uNormal;
-layout(binding = 11) uniform sampler2DArray uRadiance;
+uniform sampler2DArray uDepth;
+uniform sampler2DArray uNormal;
+uniform sampler2DArray uRadiance;
 uniform int uNumSamples;
 uniform float uSpiralTurns;
 uniform float uRadius;

@@ -34,7 +34,7 @@ void fillTexture(GLuint tex, const glm::vec3& v) { glClearTexImage(tex, 0, GL_RG
 // single-pass predicted mode (still camera) and the two-pass depth-peeling oracle.
 TEST_F(GLTest, DeepGBufferLayer2DepthAndMinimumSeparation) {
     auto scene = layeredScene();
-    for (int generation : {0, 1}) {
+    for (GBufferGeneration generation : {GBufferGeneration::Predicted, GBufferGeneration::DepthPeel}) {
         for (auto [dz, expected] : {std::pair{0.5f, 3.0f}, std::pair{1.5f, 6.0f}}) {
             auto renderer = rendererFor(scene, 64, 48, "cam");
             Renderer& r = *renderer;
@@ -42,10 +42,10 @@ TEST_F(GLTest, DeepGBufferLayer2DepthAndMinimumSeparation) {
             s.generation = generation;
             s.minSeparation = dz;
             for (int i = 0; i < 3; ++i) r.render(s);
-            EXPECT_EQ(r.lastGeometryPasses(), generation == 0 ? 1 : 2);
+            EXPECT_EQ(r.lastGeometryPasses(), generation == GBufferGeneration::Predicted ? 1 : 2);
             FloatImage d1 = r.readLayer("Depth 1"), d2 = r.readLayer("Depth 2");
-            EXPECT_NEAR(centre(d1), 2.0f, 2e-3f) << "generation " << generation;
-            EXPECT_NEAR(centre(d2), expected, 2e-3f * expected) << "generation " << generation << " dz " << dz;
+            EXPECT_NEAR(centre(d1), 2.0f, 2e-3f) << "generation " << int(generation);
+            EXPECT_NEAR(centre(d2), expected, 2e-3f * expected) << "generation " << int(generation) << " dz " << dz;
             // Where nothing is in front, layer 1 is the wall and layer 2 is empty (far plane).
             EXPECT_NEAR(d1.at(2, 2, 0), 6.0f, 2e-3f * 6.0f);
             EXPECT_GE(d2.at(2, 2, 0), r.camera().zfar * 0.999f);
@@ -61,7 +61,7 @@ TEST_F(GLTest, PredictedLayer2MatchesPeelingForStillCamera) {
         auto renderer = rendererFor(scene, 80, 60, "front");
         Renderer& r = *renderer;
         Settings s;
-        s.generation = g;
+        s.generation = GBufferGeneration(g);
         s.minSeparation = 0.2f;
         for (int i = 0; i < 3; ++i) r.render(s);
         depth[g] = r.readLayer("Depth 2");
@@ -268,7 +268,7 @@ TEST_F(GLTest, BufferReportGivesSeedLayout) {
     EXPECT_TRUE(shadow);
     // temporal_first adds exactly one 32-bit history buffer, counted as extra.
     Settings tf;
-    tf.filterOrder = 1;
+    tf.filterOrder = FilterOrder::TemporalFirst;
     r.prepare(tf);
     MemoryReport m2 = r.textures().memoryReport();
     EXPECT_EQ(m2.radiosityBitsPerPixel, 128);

@@ -13,33 +13,35 @@ int spiralTurns(int n) {
     return (n >= 0 && n < 100) ? kTurns[n] : 5779;
 }
 
-void RadiosityGatherPass::declare(const PipelineConfig&, std::vector<TextureDecl>& out) const {
-    out.push_back({"Output Radiance", {"Output Radiance"}, GL_R11F_G11F_B10F, GL_TEXTURE_2D, SizeRule::Screen, 1,
-                   MemoryGroup::Radiosity, Visualize::Radiance,
-                   "Indirect irradiance at layer 1: raw gather, then blurred and temporally blended in place"});
+void RadiosityGatherPass::table(const PipelineConfig&, PassTable& t) const {
+    t.read("Depth", "uDepth");
+    t.read("Normal", "uNormal");
+    t.read("Input Radiance", "uRadiance");
+    t.write({"Output Radiance", {"Output Radiance"}, GL_R11F_G11F_B10F, GL_TEXTURE_2D, SizeRule::screen(), 1,
+             MemoryGroup::Radiosity, Visualize::Radiance,
+             "Indirect irradiance at layer 1: raw gather, then blurred and temporally blended in place"});
 }
 
 void RadiosityGatherPass::execute(FrameContext& ctx) {
-    const Settings& s = ctx.settings;
+    const RadiositySettings& s = ctx.settings;
     // Layer 2 off: a variant without the layer-2 code (llvmpipe runs a branch on a uniform anyway).
     std::vector<std::string> defines;
     if (!ctx.config.layer2) defines.push_back("DEEPGI_SINGLE_LAYER");
-    GLuint prog = ctx.shaders.get({"fullscreen.vert", "", "radiosity_gather.frag", "", defines});
-    const int levels = ctx.textures.entry("Input Radiance").decl.levels;
-    setUniform(prog, "uNumSamples", s.numSamples);
-    setUniform(prog, "uSpiralTurns", float(spiralTurns(s.numSamples)));
-    setUniform(prog, "uRadius", s.radius);
-    setUniform(prog, "uMaxMip", std::max(0, std::min(5, levels - 1)));
-    setUniform(prog, "uMinMip", std::min(s.minMip, std::max(0, std::min(5, levels - 1))));
-    setUniform(prog, "uLogMaxOffset", s.logMaxOffset);
-    setUniform(prog, "uTapNormalTest", s.tapNormalTest ? 1 : 0);
-    setUniform(prog, "uUseLayer2", ctx.config.layer2 ? 1 : 0);
-    setUniform(prog, "uTime", s.varyTaps ? ctx.time : 0.0f);
-    glBindTextureUnit(4, ctx.textures.id("Depth"));
-    glBindTextureUnit(8, ctx.textures.id("Normal"));
-    glBindTextureUnit(11, ctx.textures.id("Input Radiance"));
-    GLuint fbo = ctx.fbos.get({{GL_COLOR_ATTACHMENT0, ctx.textures.id("Output Radiance")}}, "output radiance");
-    ctx.drawFullscreen(prog, fbo, ctx.width, ctx.height);
+    Program& prog = program_.get(ctx.shaders, {"fullscreen.vert", "", "radiosity_gather.frag", "", defines});
+    const int levels = ctx.entry("Input Radiance").decl.levels;
+    const int maxMip = std::max(0, std::min(5, levels - 1));
+    prog.numSamples.set(s.numSamples);
+    prog.spiralTurns.set(float(spiralTurns(s.numSamples)));
+    prog.radius.set(s.radius);
+    prog.maxMip.set(maxMip);
+    prog.minMip.set(std::min(s.minMip, maxMip));
+    prog.logMaxOffset.set(s.logMaxOffset);
+    prog.tapNormalTest.set(s.tapNormalTest);
+    prog.useLayer2.set(ctx.config.layer2);
+    prog.time.set(s.varyTaps ? ctx.time : 0.0f);
+    ctx.bindSamplers(prog);
+    GLuint fbo = ctx.fbos.get({{GL_COLOR_ATTACHMENT0, ctx.texture("Output Radiance")}}, "output radiance");
+    ctx.drawFullscreen(prog.id(), fbo, ctx.width, ctx.height);
 }
 
 }  // namespace deepgi
