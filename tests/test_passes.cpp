@@ -5,6 +5,8 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
+#include <numeric>
+
 using namespace deepgi;
 using namespace deepgi::test;
 using namespace deepgi::procedural;
@@ -150,14 +152,12 @@ TEST_F(GLTest, ReprojectionWithStillCameraReturnsLastOutput) {
     EXPECT_EQ(meanChannel(cut, 0) + meanChannel(cut, 1) + meanChannel(cut, 2), 0.0);
 }
 
-// The gather on a floor under a uniformly lit ceiling (radiance B, height H, gather radius r). Analytic irradiance
-// of the in-radius disk: E = pi B (1 - H^2/r^2). The paper's estimator 2pi/M_used * sum(B cos) over screen-space
-// taps over-weights steep directions, a known bias of normalising by accepted taps (technique.md 6.1): we state
-// the tolerance as [-15%, +35%] of the analytic value (measured: +25% at r = 2H; +55% before the gather's
-// pi * brightest-tap bound), and require exact linearity in B.
-TEST_F(GLTest, GatherUnderUniformlyLitCeilingMatchesAnalyticIrradiance) {
+namespace {
+
+// The gather on a floor under a uniformly lit ceiling (radiance B, height H = 1, gather radius r = 2): the mean
+// Output Radiance of floor pixels 1..4 from the camera, per channel.
+glm::dvec3 gatherUnderCeiling(const glm::vec3& B, float radius) {
     auto s = std::make_shared<Scene>();
-    const glm::vec3 B(0.6f, 0.3f, 0.1f);
     int floorM = addMaterial(*s, glm::vec3(0.0f));
     int ceilM = addMaterial(*s, glm::vec3(0.0f), B, false);
     addFloor(*s, 50.0f, 0.0f, floorM);
@@ -169,7 +169,7 @@ TEST_F(GLTest, GatherUnderUniformlyLitCeilingMatchesAnalyticIrradiance) {
     Renderer& r = *renderer;
     Settings st;
     st.sunIntensity = 0.0f;
-    st.radius = 2.0f;
+    st.radius = radius;
     st.numSamples = 30;
     st.minMip = 0;
     st.blur = false;
@@ -179,23 +179,36 @@ TEST_F(GLTest, GatherUnderUniformlyLitCeilingMatchesAnalyticIrradiance) {
     r.render(st);
     FloatImage E = r.readLayer("Output Radiance");
     // Floor pixels in the lower middle of the image (distance 1..4 from the camera).
-    double sum[3] = {0, 0, 0};
+    glm::dvec3 sum(0.0);
     int n = 0;
     for (int y = 80; y < 120; ++y)
         for (int x = 40; x < 88; ++x, ++n)
             for (int c = 0; c < 3; ++c) sum[c] += E.at(x, y, c);
-    for (int c = 0; c < 3; ++c) sum[c] /= n;
-    const double H = 1.0, rr = st.radius;
-    const double disk = M_PI * (rr * rr - H * H) / (rr * rr);  // irradiance / B of the in-radius disk
-    for (int c = 0; c < 3; ++c) {
-        EXPECT_GT(sum[c], 0.85 * disk * B[c]) << c;
-        EXPECT_LT(sum[c], 1.35 * disk * B[c]) << c;
-    }
-    // Colour ratios are preserved exactly up to R11G11B10 rounding (the estimator is linear in B).
-    EXPECT_NEAR(sum[1] / sum[0], B[1] / B[0], 0.03);
-    EXPECT_NEAR(sum[2] / sum[0], B[2] / B[0], 0.03);
-    std::printf("gather under ceiling: E/B = %.3f (in-radius disk analytic %.3f, full hemisphere %.3f)\n",
-                sum[0] / B[0], disk, M_PI);
+    return sum / double(n);
+}
+
+}  // namespace
+
+// Analytic irradiance of the in-radius disk of a uniformly lit ceiling: E = pi B (1 - H^2/r^2). Asserted within 5%
+// (R11F_G11F_B10F rounding and 30 taps). Disabled: the paper's estimator 2pi/M_used * sum(B cos) over-weights
+// steep directions (technique.md 6.1) and measures +25% here; issue 9 replaces it with a consistent estimator.
+TEST_F(GLTest, DISABLED_GatherUnderUniformlyLitCeilingMatchesAnalyticIrradiance) {
+    const glm::vec3 B(0.6f, 0.3f, 0.1f);
+    const double H = 1.0, r = 2.0;
+    const glm::dvec3 E = gatherUnderCeiling(B, float(r));
+    const double disk = M_PI * (r * r - H * H) / (r * r);  // irradiance / B of the in-radius disk
+    std::printf("gather under ceiling: E/B = %.3f (in-radius disk analytic %.3f)\n", E[0] / B[0], disk);
+    for (int c = 0; c < 3; ++c) EXPECT_NEAR(E[c] / (disk * B[c]), 1.0, 0.05) << c;
+}
+
+// The gather is linear in the input radiance: colour ratios of the ceiling are kept exactly, up to R11G11B10
+// rounding (a property the current and the consistent estimator share).
+TEST_F(GLTest, GatherUnderUniformlyLitCeilingIsLinearInRadiance) {
+    const glm::vec3 B(0.6f, 0.3f, 0.1f);
+    const glm::dvec3 E = gatherUnderCeiling(B, 2.0f);
+    ASSERT_GT(E[0], 0.0);
+    EXPECT_NEAR(E[1] / E[0], B[1] / B[0], 0.03);
+    EXPECT_NEAR(E[2] / E[0], B[2] / B[0], 0.03);
 }
 
 // The bilateral blur preserves a constant field.
@@ -281,5 +294,16 @@ TEST(SpiralTurns, MatchesPaperTable) {
     EXPECT_EQ(spiralTurns(19), 7);
     EXPECT_EQ(spiralTurns(30), 11);
     EXPECT_EQ(spiralTurns(50), 19);
-    EXPECT_EQ(spiralTurns(150), 5779);
+}
+
+// Tap i of N lies at angle 2 pi * turns * (i + 0.5) / N. For every N (the table's 1..99 and the fallback beyond):
+// turns coprime with N, so all N tap directions differ; and consecutive taps at least 1/6 of a turn apart in angle
+// (the table's worst case, N = 6), so the spiral never degenerates into taps lined up along a few rays.
+TEST(SpiralTurns, EveryTapCountGetsDistinctWellSpreadDirections) {
+    for (int n = 2; n < 4000; ++n) {
+        const int t = spiralTurns(n);
+        EXPECT_EQ(std::gcd(t, n), 1) << "N = " << n << ", turns " << t;
+        const double step = std::fmod(double(t) / n, 1.0);
+        EXPECT_GE(std::min(step, 1.0 - step), 1.0 / 6.0 - 1e-9) << "N = " << n << ", turns " << t;
+    }
 }

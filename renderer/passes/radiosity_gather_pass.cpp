@@ -1,6 +1,8 @@
 #include "renderer/passes/radiosity_gather_pass.h"
 
 #include <algorithm>
+#include <cmath>
+#include <numeric>
 
 namespace deepgi {
 
@@ -10,7 +12,13 @@ int spiralTurns(int n) {
                                     11, 11, 13, 12, 13, 19, 17, 13, 11, 18, 19, 11, 11, 14, 17, 21, 15, 16, 17, 18,
                                     13, 17, 11, 17, 19, 18, 25, 18, 19, 19, 29, 21, 19, 27, 31, 29, 21, 18, 17, 29,
                                     31, 31, 23, 18, 25, 26, 25, 23, 19, 34, 19, 27, 21, 25, 39, 29, 17, 21, 27, 29};
-    return (n >= 0 && n < 100) ? kTurns[n] : 5779;
+    if (n >= 0 && n < 100) return kTurns[n];
+    if (n <= 0) return 1;
+    // Beyond the table: the integer nearest N (2 - golden ratio) that is coprime with N, so consecutive taps are a
+    // golden angle apart (Vogel's spiral) and no two taps share a direction (G3D's 5779 lines taps up for N = 578).
+    int t = int(std::lround(double(n) * 0.38196601125));
+    while (std::gcd(t, n) != 1) ++t;
+    return t;
 }
 
 void RadiosityGatherPass::table(const PipelineConfig&, PassTable& t) const {

@@ -27,7 +27,8 @@ private:
     gl::ProgramSlot<Program> program_;
 };
 
-// Discrepancy-minimising number of spiral turns for N taps (G3D's table, technique.md 1.6).
+// Discrepancy-minimising number of spiral turns for N taps (G3D's table, technique.md 1.6); beyond it, a golden-angle
+// step coprime with N.
 int spiralTurns(int numSamples);
 
 }  // namespace deepgi
