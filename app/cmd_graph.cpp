@@ -27,9 +27,10 @@ std::string textureSummary(const Renderer& r, const std::string& name) {
     return os.str();
 }
 
-std::string channelLabel(const PassGraphChannel& c) {
-    std::string s = c.access == Access::History ? "reads last frame's" : accessName(c.access);
-    return s;
+std::string channelLabel(const PassGraphChannel& c) { return accessName(c.access); }
+
+std::string textureLabel(const PassGraphChannel& c) {
+    return c.texture + (c.levels == Levels::Base ? " [level 0]" : c.levels == Levels::Mips ? " [mips]" : "");
 }
 
 std::string dotEscape(const std::string& s) {
@@ -105,7 +106,7 @@ CommandRegistrar registrar("graph", "Print the pass pipeline a scene and setting
             else std::printf("\n    %s (disabled by these settings)\n", n.name.c_str());
             for (const auto& c : n.channels) {
                 std::string sampler = c.sampler.empty() ? "" : c.sampler + "@" + std::to_string(c.unit);
-                std::printf("      %-19s %-22s %-19s %s%s\n", channelLabel(c).c_str(), c.texture.c_str(), sampler.c_str(),
+                std::printf("      %-19s %-32s %-17s %s%s\n", channelLabel(c).c_str(), textureLabel(c).c_str(), sampler.c_str(),
                             c.present ? textureSummary(renderer, c.texture).c_str() : "(absent)",
                             c.optional ? " [optional]" : "");
             }

@@ -216,10 +216,8 @@ void Renderer::prepare(const Settings& s) {
     config_ = c;
     configValid_ = true;
     if (rebuild || stages_.size() != passes_.size()) buildPipeline();
-    std::vector<PassInfo> infos;
-    for (size_t i = 0; i < passes_.size(); ++i) infos.push_back({passes_[i]->name(), stages_[i].table, stages_[i].enabled});
     const uint64_t before = textures_.generation();
-    textures_.reconcile(allocations(infos), width_, height_, std::max(1, s.shadowMapSize));
+    textures_.reconcile(allocations_, width_, height_, std::max(1, s.shadowMapSize));
     if (textures_.generation() != before) historyValid_ = false;
     if (fboGeneration_ != textures_.generation()) {
         fbos_.clear();
@@ -257,6 +255,7 @@ void Renderer::buildPipeline() {
                                      " textures, more than the " + std::to_string(maxUnits - kFirstTableUnit) + " units left");
     }
     try {
+        allocations_ = allocations(infos);
         order_ = schedulePasses(infos);
     } catch (...) {
         configValid_ = false;  // try again (and fail again, loudly) on the next frame
@@ -273,7 +272,7 @@ std::vector<PassGraphNode> Renderer::graph() const {
             auto add = [&](std::vector<std::string>& v) { if (std::find(v.begin(), v.end(), ch.texture) == v.end()) v.push_back(ch.texture); };
             if (ch.access == Access::Read || ch.access == Access::History || ch.access == Access::Update) add(n.reads);
             if (ch.access == Access::Write || ch.access == Access::Update || ch.access == Access::Scratch) add(n.writes);
-            PassGraphChannel pc{ch.texture, ch.access, ch.sampler, -1, ch.isOptional, textures_.has(ch.texture)};
+            PassGraphChannel pc{ch.texture, ch.access, ch.levels, ch.sampler, -1, ch.isOptional, textures_.has(ch.texture)};
             for (const auto& b : stages_[i].bindings)
                 if (b.texture == ch.texture && b.sampler == ch.sampler) pc.unit = b.unit;
             n.channels.push_back(pc);

@@ -32,6 +32,7 @@ struct PassTiming {
 struct PassGraphChannel {
     std::string texture;
     Access access;
+    Levels levels = Levels::All;
     std::string sampler;  // "" = render target or copy
     int unit = -1;        // texture unit the renderer assigned (-1: not sampled)
     bool optional = false;
@@ -125,6 +126,7 @@ private:
     };
     std::vector<Stage> stages_;
     std::vector<size_t> order_;      // enabled passes in execution order
+    std::vector<TextureDecl> allocations_;  // what the tables allocate
     uint64_t bindingGeneration_ = 0;  // textures_.generation() the bindings were made for
     PipelineConfig config_;
     bool configValid_ = false;

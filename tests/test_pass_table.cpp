@@ -7,7 +7,11 @@
 #include "renderer/passes/pass_graph.h"
 
 #include <algorithm>
+#include <cstdio>
+#include <fstream>
 #include <functional>
+#include <sys/wait.h>
+#include <unistd.h>
 
 using namespace deepgi;
 using namespace deepgi::test;
@@ -358,4 +362,56 @@ TEST_F(GLTest, GraphListsThePipelineInOrder) {
     const auto g2 = r->graph();
     EXPECT_EQ(g2[6].name, "Temporal blend");
     EXPECT_EQ(g2[7].name, "Bilateral blur");
+}
+
+// `deepgi graph`: the default scene's pipeline in order with its textures, temporal_first reorders, --dot writes a
+// Graphviz digraph with every pass and texture, a broken --set is a clear error.
+TEST(GraphCli, PrintsThePipelineAndWritesGraphviz) {
+    auto run = [](const std::string& args, std::string& out) {
+        const std::string cmd = std::string(DEEPGI_BINARY) + " graph " + args + " 2>&1";
+        FILE* p = popen(cmd.c_str(), "r");
+        if (!p) return -1;
+        char buf[4096];
+        size_t n;
+        out.clear();
+        while ((n = fread(buf, 1, sizeof buf, p)) > 0) out.append(buf, n);
+        const int st = pclose(p);
+        return WIFEXITED(st) ? WEXITSTATUS(st) : -1;
+    };
+    const std::string dot = ::testing::TempDir() + "deepgi_graph_" + std::to_string(::getpid()) + ".dot";
+    std::string out;
+    ASSERT_EQ(run("--size 64x48 --dot '" + dot + "'", out), 0) << out;
+    for (const char* part : {" 1. Shadow maps", " 2. Deep G-buffer", " 5. Radiosity gather", " 8. Composite",
+                             "Ambient occlusion (disabled", "Radiosity Scratch", "R11F_G11F_B10F  64x48 (screen)", "uRadiance@"})
+        EXPECT_TRUE(contains(out, part)) << part << "\n" << out;
+    EXPECT_LT(out.find("Bilateral blur"), out.find("Temporal blend"));
+    std::ifstream f(dot);
+    const std::string text((std::istreambuf_iterator<char>(f)), {});
+    EXPECT_EQ(text.rfind("// deepgi graph", 0), 0u);
+    for (const char* part : {"digraph deepgi {", "\"pass:Composite\"", "\"tex:Output Radiance\"", "\"pass:Radiosity gather\" -> \"tex:Output Radiance\""})
+        EXPECT_TRUE(contains(text, part)) << part;
+    std::remove(dot.c_str());
+    ASSERT_EQ(run("--size 64x48 --set temporal.order=temporal_first", out), 0) << out;
+    EXPECT_GT(out.find("Bilateral blur"), out.find("Temporal blend"));
+    EXPECT_TRUE(contains(out, "Temporal History"));
+    EXPECT_NE(run("--set no.such=1", out), 0);
+    EXPECT_TRUE(contains(out, "no.such")) << out;
+}
+
+// The enum class of each DEEPGI_ENUM setting lists its choices in the order of the choice string in settings.def.
+TEST(SettingsGroups, EnumChoicesMatchTheirEnumerators) {
+    Settings s;
+    applyAssignment(s, "gbuffer.generation=depth_peel");
+    EXPECT_EQ(s.generation, GBufferGeneration::DepthPeel);
+    applyAssignment(s, "temporal.order=temporal_first");
+    EXPECT_EQ(s.filterOrder, FilterOrder::TemporalFirst);
+    applyAssignment(s, "composite.mode=seed");
+    EXPECT_EQ(s.compositeMode, CompositeMode::Seed);
+    applyAssignment(s, "composite.tonemap=aces");
+    EXPECT_EQ(s.tonemap, Tonemap::Aces);
+    // A pass sees its stage's group as a plain struct of the same values.
+    const BlurSettings& blur = s;
+    applyAssignment(s, "blur.radius=3");
+    EXPECT_EQ(blur.blurRadius, 3);
+    EXPECT_EQ(formatSettingValue(*findSetting("composite.mode"), double(int(CompositeMode::Physical))), "physical");
 }
