@@ -50,9 +50,9 @@ void writeDot(const Renderer& r, const std::vector<PassGraphNode>& g, const std:
     std::map<std::string, bool> textures;
     int step = 0;
     for (const auto& n : g) {
-        const std::string label = n.enabled ? std::to_string(++step) + ". " + n.name : n.name + "\\n(disabled)";
+        const std::string label = n.enabled ? dotEscape(std::to_string(++step) + ". " + n.name) : dotEscape(n.name) + "\\n(disabled)";
         f << "  \"pass:" << dotEscape(n.name) << "\" [shape=box, style=\"" << (n.enabled ? "filled" : "dashed")
-          << "\", fillcolor=\"#dde8f5\", label=\"" << dotEscape(label) << "\"" << (n.enabled ? "" : ", color=gray, fontcolor=gray") << "];\n";
+          << "\", fillcolor=\"#dde8f5\", label=\"" << label << "\"" << (n.enabled ? "" : ", color=gray, fontcolor=gray") << "];\n";
         for (const auto& c : n.channels) textures[c.texture] = textures[c.texture] || c.present;
     }
     for (const auto& [name, present] : textures) {
