@@ -36,6 +36,8 @@ CommandRegistrar registrar("buffers", "List every texture the renderer allocates
         std::printf("radiosity: %d bits per pixel, %llu bytes\n", r.radiosityBitsPerPixel, (unsigned long long)r.radiosityBytes);
         std::printf("extra:     %d bits per pixel (screen-sized) + mips and shadow maps, %llu bytes\n", r.extraBitsPerPixel,
                     (unsigned long long)r.extraBytes);
+        std::printf("scratch:   %d bits per pixel (content lives inside one pass: the blur's and temporal blend's ping-pong), %llu bytes\n",
+                    r.scratchBitsPerPixel, (unsigned long long)r.scratchBytes);
         std::printf("total:     %llu bytes (%.1f MiB)\n", (unsigned long long)r.totalBytes, r.totalBytes / 1048576.0);
         return 0;
     };

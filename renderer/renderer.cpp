@@ -5,6 +5,7 @@
 #include "renderer/passes/composite_pass.h"
 #include "renderer/passes/deep_gbuffer_pass.h"
 #include "renderer/passes/input_radiance_pass.h"
+#include "renderer/passes/pass_graph.h"
 #include "renderer/passes/radiosity_gather_pass.h"
 #include "renderer/passes/reproject_radiance_pass.h"
 #include "renderer/passes/probe_update_pass.h"
@@ -51,18 +52,30 @@ float projScale(const Camera& c, int height) {
 
 }  // namespace
 
-Renderer::Renderer(RendererOptions options) : options_(std::move(options)) {
+// Texture units 0 and 1 belong to SceneGpu's material textures (material.glsl); the pass tables get the rest.
+static constexpr int kFirstTableUnit = 2;
+
+std::vector<std::unique_ptr<RenderPass>> Renderer::standardPasses() {
+    // The order of this list only breaks ties: the tables decide what must run before what.
+    std::vector<std::unique_ptr<RenderPass>> p;
+    p.push_back(std::make_unique<ShadowMapPass>());
+    p.push_back(std::make_unique<ProbeUpdatePass>());
+    p.push_back(std::make_unique<DeepGBufferPass>());
+    p.push_back(std::make_unique<ReprojectRadiancePass>());
+    p.push_back(std::make_unique<InputRadiancePass>());
+    p.push_back(std::make_unique<RadiosityGatherPass>());
+    p.push_back(std::make_unique<AmbientOcclusionPass>());
+    p.push_back(std::make_unique<BilateralBlurPass>());
+    p.push_back(std::make_unique<TemporalBlendPass>());
+    p.push_back(std::make_unique<CompositePass>());
+    return p;
+}
+
+Renderer::Renderer(RendererOptions options) : Renderer(std::move(options), standardPasses()) {}
+
+Renderer::Renderer(RendererOptions options, std::vector<std::unique_ptr<RenderPass>> passes)
+    : options_(std::move(options)), passes_(std::move(passes)) {
     shaders_ = std::make_unique<gl::ShaderLibrary>(options_.shaderDir);
-    passes_.push_back(std::make_unique<ShadowMapPass>());
-    passes_.push_back(std::make_unique<ProbeUpdatePass>());
-    passes_.push_back(std::make_unique<DeepGBufferPass>());
-    passes_.push_back(std::make_unique<ReprojectRadiancePass>());
-    passes_.push_back(std::make_unique<InputRadiancePass>());
-    passes_.push_back(std::make_unique<RadiosityGatherPass>());
-    passes_.push_back(std::make_unique<AmbientOcclusionPass>());
-    passes_.push_back(std::make_unique<BilateralBlurPass>());
-    passes_.push_back(std::make_unique<TemporalBlendPass>());
-    passes_.push_back(std::make_unique<CompositePass>());
     fullscreenVao_ = gl::createVertexArray("fullscreen triangle");
     frameUbo_ = gl::createBuffer("frame uniforms");
     glNamedBufferData(frameUbo_.id(), sizeof(FrameUniformsStd140), nullptr, GL_DYNAMIC_DRAW);
@@ -102,11 +115,11 @@ PipelineConfig Renderer::makeConfig(const Settings& s) const {
     c.layer2 = s.layer2;
     c.emission = scene_->hasEmission();
     c.indirect = s.indirect;
-    c.seedComposite = s.compositeMode == 1;
+    c.seedComposite = s.compositeMode == CompositeMode::Seed;
     c.blur = s.blur;
     c.temporal = s.temporal;
-    c.temporalFirst = s.filterOrder == 1 && s.temporal;
-    c.depthPeel = s.generation == 1 && s.layer2;
+    c.temporalFirst = s.filterOrder == FilterOrder::TemporalFirst && s.temporal;
+    c.depthPeel = s.generation == GBufferGeneration::DepthPeel && s.layer2;
     c.ao = s.aoEnabled;
     if (probes_) {
         c.probes = true;
@@ -224,18 +237,98 @@ void Renderer::prepareResolved(const Settings& s) {
         probeSettings_ = s;
     }
     PipelineConfig c = makeConfig(s);
-    if (!configValid_ || !(c == config_)) historyValid_ = false;  // buffers change meaning
+    const bool rebuild = !configValid_ || !(c == config_);
+    if (rebuild) historyValid_ = false;  // buffers change meaning
     config_ = c;
     configValid_ = true;
-    std::vector<TextureDecl> decls;
-    for (const auto& p : passes_) p->declare(config_, decls);
+    if (rebuild || stages_.size() != passes_.size()) buildPipeline();
     const uint64_t before = textures_.generation();
-    textures_.reconcile(decls, width_, height_, std::max(1, s.shadowMapSize));
+    textures_.reconcile(allocations_, width_, height_, std::max(1, s.shadowMapSize));
     if (textures_.generation() != before) historyValid_ = false;
     if (fboGeneration_ != textures_.generation()) {
         fbos_.clear();
         fboGeneration_ = textures_.generation();
     }
+    if (bindingGeneration_ != textures_.generation() || rebuild) {
+        // Units in table order per pass; an absent optional texture is bound as 0 (the shader does not read it).
+        for (Stage& st : stages_) {
+            st.bindings.clear();
+            int unit = kFirstTableUnit;
+            for (const Channel& ch : st.table.channels()) {
+                if (ch.sampler.empty()) continue;
+                st.bindings.push_back({ch.texture, ch.sampler, unit++, textures_.has(ch.texture) ? textures_.id(ch.texture) : 0});
+            }
+        }
+        bindingGeneration_ = textures_.generation();
+    }
+}
+
+void Renderer::buildPipeline() {
+    stages_.assign(passes_.size(), Stage{});
+    std::vector<PassInfo> infos;
+    for (size_t i = 0; i < passes_.size(); ++i) {
+        passes_[i]->table(config_, stages_[i].table);
+        stages_[i].enabled = passes_[i]->enabled(config_);
+        infos.push_back({passes_[i]->name(), stages_[i].table, stages_[i].enabled});
+    }
+    GLint maxUnits = 16;
+    glGetIntegerv(GL_MAX_TEXTURE_IMAGE_UNITS, &maxUnits);
+    for (size_t i = 0; i < passes_.size(); ++i) {
+        int sampled = 0;
+        for (const Channel& ch : stages_[i].table.channels()) sampled += !ch.sampler.empty();
+        if (kFirstTableUnit + sampled > maxUnits)
+            throw std::runtime_error(std::string("pipeline: pass '") + passes_[i]->name() + "' samples " + std::to_string(sampled) +
+                                     " textures, more than the " + std::to_string(maxUnits - kFirstTableUnit) + " units left");
+    }
+    try {
+        allocations_ = allocations(infos);
+        order_ = schedulePasses(infos);
+    } catch (...) {
+        configValid_ = false;  // try again (and fail again, loudly) on the next frame
+        stages_.clear();
+        throw;
+    }
+}
+
+std::vector<PassGraphNode> Renderer::graph() const {
+    std::vector<PassGraphNode> out;
+    auto node = [&](size_t i) {
+        PassGraphNode n{passes_[i]->name(), {}, {}, stages_[i].enabled, {}};
+        for (const Channel& ch : stages_[i].table.channels()) {
+            auto add = [&](std::vector<std::string>& v) { if (std::find(v.begin(), v.end(), ch.texture) == v.end()) v.push_back(ch.texture); };
+            if (ch.access == Access::Read || ch.access == Access::History || ch.access == Access::Update) add(n.reads);
+            if (ch.access == Access::Write || ch.access == Access::Update || ch.access == Access::Scratch) add(n.writes);
+            PassGraphChannel pc{ch.texture, ch.access, ch.levels, ch.sampler, -1, ch.isOptional, textures_.has(ch.texture)};
+            for (const auto& b : stages_[i].bindings)
+                if (b.texture == ch.texture && b.sampler == ch.sampler) pc.unit = b.unit;
+            n.channels.push_back(pc);
+        }
+        out.push_back(std::move(n));
+    };
+    if (stages_.size() != passes_.size()) return out;
+    // Disabled passes go right after the enabled pass that precedes them in the pass list.
+    std::vector<bool> placed(passes_.size(), false);
+    auto placeDisabledAfter = [&](size_t i) {
+        for (size_t j = i + 1; j < passes_.size() && !stages_[j].enabled; ++j) { node(j); placed[j] = true; }
+    };
+    for (size_t j = 0; j < passes_.size() && !stages_[j].enabled; ++j) { node(j); placed[j] = true; }
+    for (size_t i : order_) {
+        node(i);
+        placed[i] = true;
+        placeDisabledAfter(i);
+    }
+    for (size_t j = 0; j < passes_.size(); ++j) if (!placed[j]) node(j);
+    return out;
+}
+
+void Renderer::runPass(size_t i, FrameContext& ctx) {
+    const Stage& st = stages_[i];
+    for (const auto& b : st.bindings) glBindTextureUnit(GLuint(b.unit), b.id);
+    ctx.pass = passes_[i].get();
+    ctx.table = &st.table;
+    ctx.bindings = &st.bindings;
+    passes_[i]->execute(ctx);
+    for (const auto& b : st.bindings) glBindTextureUnit(GLuint(b.unit), 0);
 }
 
 void Renderer::render(const Settings& user) {
@@ -244,14 +337,6 @@ void Renderer::render(const Settings& user) {
     const Settings s = resolveLengths(user, sceneSize());  // the passes see lengths in scene units
     prepareResolved(s);
     FrameContext ctx = makeContext(s);
-
-    std::vector<RenderPass*> order;
-    for (const auto& p : passes_) order.push_back(p.get());
-    if (config_.temporalFirst) {  // temporal blend before the blur
-        auto blur = std::find_if(order.begin(), order.end(), [](RenderPass* p) { return dynamic_cast<BilateralBlurPass*>(p); });
-        auto temporal = std::find_if(order.begin(), order.end(), [](RenderPass* p) { return dynamic_cast<TemporalBlendPass*>(p); });
-        std::iter_swap(blur, temporal);
-    }
 
     using clock = std::chrono::steady_clock;
     const bool gpu = options_.timing == TimingMode::GpuQueries;
@@ -275,8 +360,8 @@ void Renderer::render(const Settings& user) {
     }
     if (finish) glFinish();
     size_t q = 0;
-    for (RenderPass* p : order) {
-        if (!p->enabled(config_)) continue;
+    for (size_t index : order_) {
+        RenderPass* p = passes_[index].get();
         auto t0 = clock::now();
         const double c0 = cpu ? cpuMs() : 0.0;
         if (gpu) {
@@ -287,7 +372,7 @@ void Renderer::render(const Settings& user) {
             }
             glBeginQuery(GL_TIME_ELAPSED, queries[q].id());
         }
-        p->execute(ctx);
+        runPass(index, ctx);
         if (gpu) {
             glEndQuery(GL_TIME_ELAPSED);
             queryNames.push_back(p->name());
@@ -316,9 +401,9 @@ void Renderer::executePass(const std::string& passName, const Settings& user) {
     const Settings s = resolveLengths(user, sceneSize());
     prepareResolved(s);
     FrameContext ctx = makeContext(s);
-    for (const auto& p : passes_)
-        if (passName == p->name()) {
-            p->execute(ctx);
+    for (size_t i = 0; i < passes_.size(); ++i)
+        if (passName == passes_[i]->name()) {
+            runPass(i, ctx);
             glBindFramebuffer(GL_FRAMEBUFFER, 0);
             return;
         }

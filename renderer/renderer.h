@@ -30,6 +30,23 @@ struct PassTiming {
     double ms = 0.0;
 };
 
+// One pass of the pipeline as the renderer runs it, for the viewer's pipeline panel and `deepgi graph`.
+struct PassGraphChannel {
+    std::string texture;
+    Access access;
+    Levels levels = Levels::All;
+    std::string sampler;  // "" = render target or copy
+    int unit = -1;        // texture unit the renderer assigned (-1: not sampled)
+    bool optional = false;
+    bool present = false;  // the texture exists in this pipeline
+};
+struct PassGraphNode {
+    std::string name;
+    std::vector<std::string> reads, writes;  // writes: written, updated in place, or scratch
+    bool enabled;
+    std::vector<PassGraphChannel> channels;  // the pass's table as the renderer bound it
+};
+
 struct RendererOptions {
     std::string shaderDir = DEEPGI_SHADER_DIR;
     TimingMode timing = TimingMode::WallClock;
@@ -38,6 +55,9 @@ struct RendererOptions {
 class Renderer {
 public:
     explicit Renderer(RendererOptions options = {});
+    // A renderer over other passes (tests of the pass-table rules); the default is standardPasses().
+    Renderer(RendererOptions options, std::vector<std::unique_ptr<RenderPass>> passes);
+    static std::vector<std::unique_ptr<RenderPass>> standardPasses();
     ~Renderer();
     Renderer(const Renderer&) = delete;
     Renderer& operator=(const Renderer&) = delete;
@@ -56,7 +76,8 @@ public:
 
     // The scene's size (the diagonal of its bounds): what lengths "x scene size" multiply (scene.length_unit = 0).
     float sceneSize() const;
-    // Declares and allocates the textures the settings need without rendering (for memory reports).
+    // Builds the pipeline the settings need from the pass tables (allocates textures, orders and checks the
+    // passes: std::runtime_error naming pass and texture on a broken table) without rendering.
     void prepare(const Settings& settings);
     // Renders one frame. Throws gl::ShaderError if a shader has never compiled, std::runtime_error on allocation
     // failure (e.g. a size too large for memory).
@@ -70,6 +91,9 @@ public:
     gl::ShaderLibrary& shaders() { return *shaders_; }
     const std::vector<PassTiming>& timings() const { return timings_; }
     const std::vector<std::unique_ptr<RenderPass>>& passes() const { return passes_; }
+    // Every pass of the pipeline prepare()/render() last built, in execution order; disabled passes are listed
+    // where they would run, with enabled = false.
+    std::vector<PassGraphNode> graph() const;
     const PipelineConfig& config() const { return config_; }
     const ProbeVolume* probeVolume() const { return probes_.get(); }
     uint64_t frameIndex() const { return frameIndex_; }
@@ -89,6 +113,8 @@ private:
     void setupLights(const Settings& s);
     void uploadFrameUniforms(const Settings& s);
     FrameContext makeContext(const Settings& s);
+    void buildPipeline();
+    void runPass(size_t index, FrameContext& ctx);
 
     RendererOptions options_;
     std::unique_ptr<gl::ShaderLibrary> shaders_;
@@ -98,6 +124,16 @@ private:
     FramebufferCache fbos_;
     uint64_t fboGeneration_ = 0;
     std::vector<std::unique_ptr<RenderPass>> passes_;
+    // The pipeline of config_: each pass's table and bindings (index = passes_), and the execution order.
+    struct Stage {
+        PassTable table;
+        bool enabled = false;
+        std::vector<TextureBinding> bindings;
+    };
+    std::vector<Stage> stages_;
+    std::vector<size_t> order_;      // enabled passes in execution order
+    std::vector<TextureDecl> allocations_;  // what the tables allocate
+    uint64_t bindingGeneration_ = 0;  // textures_.generation() the bindings were made for
     PipelineConfig config_;
     bool configValid_ = false;
     gl::VertexArrayHandle fullscreenVao_;

@@ -5,8 +5,8 @@
 //   AO = max(0, 1 - sqrt(intensity * pi/N * sum_i max(0, A_i1, A_i2)))
 //   A  = max(0, 1 - v.v/r^2) * max(0, (v.n - bias) / sqrt(v.v + eps)),  v = Y - X (camera space)
 #include "common.glsl"
-layout(binding = 4) uniform sampler2DArray uDepth;
-layout(binding = 8) uniform sampler2DArray uNormal;
+uniform sampler2DArray uDepth;
+uniform sampler2DArray uNormal;
 uniform int uNumSamples;
 uniform float uSpiralTurns;
 uniform float uRadius;

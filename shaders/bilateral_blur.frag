@@ -2,9 +2,9 @@
 // One direction of the separable bilateral blur (G3D's reconstruction filter, technique.md 1.9): Gaussian taps
 // weighted by normal and plane-distance agreement with the centre, optionally monotonically decreasing.
 #include "common.glsl"
-layout(binding = 4) uniform sampler2DArray uDepth;
-layout(binding = 8) uniform sampler2DArray uNormal;
-layout(binding = 12) uniform sampler2D uSource;
+uniform sampler2DArray uDepth;
+uniform sampler2DArray uNormal;
+uniform sampler2D uSource;
 uniform ivec2 uAxis;
 uniform int uRadius;     // 1..6
 uniform int uStep;

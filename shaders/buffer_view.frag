@@ -2,10 +2,10 @@
 // Viewer/inspector display of one texture layer (and optionally a second one right of a split line).
 // Output is display-encoded RGBA8. Standalone on purpose (no common.glsl): a broken pipeline include must not
 // take the viewer's display down with it.
-layout(binding = 0) uniform sampler2D uTex2DA;
-layout(binding = 1) uniform sampler2DArray uTexArrA;
-layout(binding = 2) uniform sampler2D uTex2DB;
-layout(binding = 3) uniform sampler2DArray uTexArrB;
+uniform sampler2D uTex2DA;
+uniform sampler2DArray uTexArrA;
+uniform sampler2D uTex2DB;
+uniform sampler2DArray uTexArrB;
 
 uniform int uHasB;
 uniform int uIsArray[2];

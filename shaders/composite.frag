@@ -3,12 +3,12 @@
 // seed: L = E_input1 + E_output * albedo (the seed's formula, kept to measure its error).
 #include "common.glsl"
 #include "lighting.glsl"
-layout(binding = 4) uniform sampler2DArray uDepth;
-layout(binding = 7) uniform sampler2DArray uAlbedo;
-layout(binding = 8) uniform sampler2DArray uNormal;
-layout(binding = 9) uniform sampler2DArray uEmission;
-layout(binding = 11) uniform sampler2DArray uRadiance;   // Input Radiance 1/2
-layout(binding = 12) uniform sampler2D uIndirect;        // Output Radiance
+uniform sampler2DArray uDepth;
+uniform sampler2DArray uAlbedo;
+uniform sampler2DArray uNormal;
+uniform sampler2DArray uEmission;
+uniform sampler2DArray uRadiance;   // Input Radiance 1/2
+uniform sampler2D uIndirect;        // Output Radiance
 uniform int uHasEmission;
 uniform int uIndirectOn;
 uniform int uSeedMode;

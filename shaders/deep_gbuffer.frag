@@ -10,11 +10,10 @@ layout(location = 1) out vec2 oNormal;
 #ifdef EMISSION
 layout(location = 2) out vec3 oEmission;
 #endif
-layout(binding = 2) uniform sampler2D uLastDepth;     // last frame's layer-1 depth (predicted mode)
-layout(binding = 3) uniform sampler2D uPeelDepth;     // this frame's layer-1 depth (depth-peel mode)
+uniform sampler2D uLastDepth;     // last frame's layer-1 depth (predicted mode)
+uniform sampler2D uPeelDepth;     // this frame's layer-1 depth (depth-peel mode)
 uniform float uMinSeparation;
 uniform int uPeel;          // 1 = depth peeling
-uniform int uHaveHistory;   // 0 on the first frame / after a cut (peeling is used then)
 
 void main() {
     vec4 base = baseColor(gs.uv);

@@ -1,9 +1,9 @@
 #version 450 core
 // One mip level of depth, normal and input radiance for one layer by rotated-grid point subsampling: every
 // quantity of a coarse texel comes from the same real surface sample (no averaged phantom depths or normals).
-layout(binding = 4) uniform sampler2DArray uDepth;
-layout(binding = 8) uniform sampler2DArray uNormal;
-layout(binding = 11) uniform sampler2DArray uRadiance;
+uniform sampler2DArray uDepth;
+uniform sampler2DArray uNormal;
+uniform sampler2DArray uRadiance;
 uniform int uLayer;
 uniform int uSrcLevel;
 layout(location = 0) out vec2 oNormal;

@@ -3,11 +3,11 @@
 //   B = Le + albedo/pi * (E_direct + (1 - damping) * w * E_indirect_last_frame)   (last term layer 1 only)
 #include "common.glsl"
 #include "lighting.glsl"
-layout(binding = 4) uniform sampler2DArray uDepth;
-layout(binding = 7) uniform sampler2DArray uAlbedo;
-layout(binding = 8) uniform sampler2DArray uNormal;
-layout(binding = 9) uniform sampler2DArray uEmission;
-layout(binding = 10) uniform sampler2D uReprojected;
+uniform sampler2DArray uDepth;
+uniform sampler2DArray uAlbedo;
+uniform sampler2DArray uNormal;
+uniform sampler2DArray uEmission;
+uniform sampler2D uReprojected;
 uniform int uLayer;
 uniform int uHasEmission;
 uniform int uFeedback;      // add last frame's indirect light (multi-bounce)

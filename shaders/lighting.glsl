@@ -9,8 +9,8 @@ struct GpuLight {
 layout(std430, binding = 1) readonly buffer Lights { GpuLight uLights[]; };
 uniform int uLightCount;
 uniform float uShadowBias;  // in shadow-map texels
-layout(binding = 14) uniform sampler2DArrayShadow uShadowMaps;
-layout(binding = 15) uniform samplerCubeArrayShadow uShadowCubes;
+uniform sampler2DArrayShadow uShadowMaps;
+uniform samplerCubeArrayShadow uShadowCubes;
 
 float rangeWindow(float dist, float range) {
     if (range <= 0.0) return 1.0;

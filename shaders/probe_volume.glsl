@@ -39,9 +39,15 @@ layout(std140, binding = PROBE_VOLUME_UBO_BINDING) uniform ProbeVolumeUniforms {
     ivec4 uProbeCounts;
     ivec4 uProbeTexels;
 };
+#ifdef PROBE_VOLUME_FIXED_UNITS  // standalone use (tests); in the pipeline the renderer assigns units from the table
 layout(binding = PROBE_IRRADIANCE_UNIT) uniform sampler2D uProbeIrradiance;
 layout(binding = PROBE_DEPTH_UNIT) uniform sampler2D uProbeDepth;
 layout(binding = PROBE_DATA_UNIT) uniform sampler2D uProbeData;
+#else
+uniform sampler2D uProbeIrradiance;
+uniform sampler2D uProbeDepth;
+uniform sampler2D uProbeData;
+#endif
 
 float probeSignNotZero(float v) { return v >= 0.0 ? 1.0 : -1.0; }
 

@@ -9,9 +9,9 @@
 // surfaces the two layers hold as taps grow. The covered share of the cosine-weighted hemisphere goes to
 // Gather Coverage (the confidence where the screen has no data).
 #include "common.glsl"
-layout(binding = 4) uniform sampler2DArray uDepth;
-layout(binding = 8) uniform sampler2DArray uNormal;
-layout(binding = 11) uniform sampler2DArray uRadiance;
+uniform sampler2DArray uDepth;
+uniform sampler2DArray uNormal;
+uniform sampler2DArray uRadiance;
 uniform int uNumSamples;
 uniform float uSpiralTurns;
 uniform float uRadius;

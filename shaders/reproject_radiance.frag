@@ -3,7 +3,7 @@
 // Rejected (disoccluded, off-screen, first frame) pixels get 0: a defined value, never garbage.
 #include "common.glsl"
 #include "reprojection.glsl"
-layout(binding = 6) uniform sampler2D uHistory;
+uniform sampler2D uHistory;
 layout(location = 0) out vec3 oReprojected;
 void main() {
     ivec2 pix = ivec2(gl_FragCoord.xy);

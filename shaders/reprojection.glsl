@@ -1,6 +1,6 @@
 // Where this pixel's surface was last frame, and how far it may be trusted (shared by reproject and temporal).
-layout(binding = 4) uniform sampler2DArray uDepth;      // Depth 1/2 (layer 0 used)
-layout(binding = 5) uniform sampler2D uLastDepthTex;    // Last Depth
+uniform sampler2DArray uDepth;      // Depth 1/2 (layer 0 used)
+uniform sampler2D uLastDepthTex;    // Last Depth
 uniform float uFalloffStart;
 uniform float uFalloffEnd;
 uniform int uHistoryValid;  // 0 on the first frame and after a camera cut

@@ -2,8 +2,8 @@
 // E = w * E_reprojected + (1 - w) * E_current with w = alpha * (1 - smoothstep(start, end, world distance)).
 #include "common.glsl"
 #include "reprojection.glsl"
-layout(binding = 12) uniform sampler2D uCurrent;
-layout(binding = 10) uniform sampler2D uReprojected;
+uniform sampler2D uCurrent;
+uniform sampler2D uReprojected;
 uniform float uAlpha;
 layout(location = 0) out vec3 oValue;
 void main() {

@@ -321,26 +321,50 @@ TEST_F(GLTest, HalfTurnEveryFrameReprojectsNothing) {
 // frame at the same pose differs by 130% on average: a screen-space gather forgets what leaves the view, the
 // history does not), but it must not invent any: asserted, every buffer finite and the brightest Output Radiance
 // pixel of any moving frame at most 5% above the brightest pixel of fresh first frames at all the poses.
+// The smear itself is asserted against the blend law: a twin renderer on the same path with temporal.enabled =
+// false gives this frame's own (history-free) irradiance F, and the temporal blend E = F + w (H - F), w <= alpha
+// (H: Reprojected Radiance) bounds every pixel's smear |E - F| by alpha |H - F| (+ three R11G11B10 steps of rounding).
 TEST_F(GLTest, FastTranslationBoundedSmearing) {
     auto scene = cornellScene();
     const Settings s = motionSettings();
-    Renderer r;
-    r.setScene(scene);
-    r.resize(48, 36);
-    double sum = 0.0;
+    Settings noTemporal = s;
+    noTemporal.temporal = false;
+    Renderer r, twin;
+    for (Renderer* x : {&r, &twin}) {
+        x->setScene(scene);
+        x->resize(48, 36);
+    }
+    double sum = 0.0, smear = 0.0, historyGap = 0.0;
+    int beyondLaw = 0;
     float brightestMoving = 0.0f, brightestFresh = 0.0f;
     for (int f = 0; f < 16; ++f) {
         const float x = -0.7f + 0.2f * float(f < 8 ? f : 15 - f);
         const Camera cam = lookAt({x, 1.0f, 0.9f}, {x * 0.5f, 0.9f, -1.0f});
         r.setCamera(cam);
         r.render(s);
+        twin.setCamera(cam);
+        twin.render(noTemporal);
         const FloatImage moving = r.readLayer("Output Radiance"), fresh = freshFrame(scene, cam, s, 48, 36, "Output Radiance");
+        const FloatImage own = twin.readLayer("Output Radiance"), history = r.readLayer("Reprojected Radiance");
         for (float v : moving.pixels) brightestMoving = std::max(brightestMoving, v);
         for (float v : fresh.pixels) brightestFresh = std::max(brightestFresh, v);
         sum += meanRelDiff(moving, fresh);
+        for (size_t i = 0; i < moving.pixels.size(); ++i) {
+            const double E = moving.pixels[i], F = own.pixels[i], H = history.pixels[i];
+            const double tol = 3.0 / 32.0 * std::max({std::abs(E), std::abs(F), std::abs(H)}) + 2e-6;
+            smear += std::abs(E - F);
+            historyGap += std::abs(H - F);
+            if (std::abs(E - F) > s.hysteresis * std::abs(H - F) + tol) {
+                if (beyondLaw < 5) std::printf("frame %d value %zu: E %g, own F %g, history H %g\n", f, i, E, F, H);
+                ++beyondLaw;
+            }
+        }
     }
-    std::printf("fast translation: mean difference to fresh frames %.4f; brightest moving %.4f, fresh %.4f\n", sum / 16,
-                brightestMoving, brightestFresh);
+    std::printf("fast translation: mean difference to fresh frames %.4f; smear / history gap %.4f (alpha %.2f); "
+                "brightest moving %.4f, fresh %.4f\n", sum / 16, smear / historyGap, s.hysteresis, brightestMoving, brightestFresh);
+    EXPECT_EQ(beyondLaw, 0) << "a pixel's smear exceeds alpha times its history's difference";
+    EXPECT_GT(smear, 0.0) << "the motion must exercise the history";
+    EXPECT_LE(smear, s.hysteresis * historyGap);
     EXPECT_LE(brightestMoving, 1.05f * brightestFresh);
     expectAllBuffersFinite(r, "fast translation");
 }

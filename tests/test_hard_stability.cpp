@@ -67,7 +67,8 @@ std::shared_ptr<Scene> closedBox(float rho, float Le) {
 // stochastically, so the per-pixel change never reaches 0); energy bounded: the converged mean is >= Le
 // (emission alone) and no pixel of any frame read exceeds the analytic furnace value (+5%, rounding).
 // The screen-space gather sees only the visible walls, so both views converge below the furnace value (~1.6 and
-// ~4.9; README "Known limits"). Before the gather bounded its estimate by pi * the brightest tap, the 120-degree
+// ~4.9; README "Known limits"): this test does not assert the energy against the furnace value, the disabled
+// DISABLED_LongRunClosedWhiteBoxReachesFurnaceRadiance below does (issue 9). Before the gather bounded its estimate by pi * the brightest tap, the 120-degree
 // view ran away (loop gain rho * k > 1: mean 13700 after 2000 frames, heading for the format maximum); with
 // llvmpipe's truncating R11F_G11F_B10F stores the runaway was hidden by a downward ratchet (it stalled at ~38).
 TEST_F(GLTest, LongRunClosedWhiteBoxFullFeedbackConvergesAndStaysBounded) {
@@ -121,6 +122,31 @@ TEST_F(GLTest, LongRunClosedWhiteBoxFullFeedbackConvergesAndStaysBounded) {
         EXPECT_GE(meanLate, Le) << view;
         EXPECT_LE(brightest, 1.05 * analytic) << view;
         expectAllBuffersFinite(r, view);
+    }
+}
+
+// The closed furnace's radiance is Le / (1 - rho) = 20 everywhere, whatever the view: after 2000 frames of full
+// feedback the mean Final Radiance of both views must be within 10% of it (the path tracer above meets 5%).
+// Disabled: today's screen-space gather loses 75-90% of it (mean ~1.6 and ~4.9; the walls out of view never
+// contribute, and the estimator is biased): issue 9 (consistent estimator, world-space fallback) is to make it pass.
+TEST_F(GLTest, DISABLED_LongRunClosedWhiteBoxReachesFurnaceRadiance) {
+    const float rho = 0.95f, Le = 1.0f;
+    auto scene = closedBox(rho, Le);
+    const double analytic = Le / (1.0 - rho);
+    for (const char* view : {"inside", "wide"}) {
+        Renderer r;
+        r.setScene(scene);
+        r.resize(32, 32);
+        r.setCamera(selectCamera(*scene, view));
+        Settings s;
+        s.damping = 0.0f;
+        double sumLate = 0.0;
+        for (int f = 0; f < 2000; ++f) {
+            r.render(s);
+            if (f >= 1900) sumLate += meanGrey(r.readFinalRadiance());
+        }
+        std::printf("%s: mean of frames 1900-2000 %.3f, furnace %.3f\n", view, sumLate / 100.0, analytic);
+        EXPECT_NEAR(sumLate / 100.0 / analytic, 1.0, 0.10) << view;
     }
 }
 

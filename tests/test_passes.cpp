@@ -5,6 +5,8 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
+#include <numeric>
+
 using namespace deepgi;
 using namespace deepgi::test;
 using namespace deepgi::procedural;
@@ -34,7 +36,7 @@ void fillTexture(GLuint tex, const glm::vec3& v) { glClearTexImage(tex, 0, GL_RG
 // single-pass predicted mode (still camera) and the two-pass depth-peeling oracle.
 TEST_F(GLTest, DeepGBufferLayer2DepthAndMinimumSeparation) {
     auto scene = layeredScene();
-    for (int generation : {0, 1}) {
+    for (GBufferGeneration generation : {GBufferGeneration::Predicted, GBufferGeneration::DepthPeel}) {
         for (auto [dz, expected] : {std::pair{0.5f, 3.0f}, std::pair{1.5f, 6.0f}}) {
             auto renderer = rendererFor(scene, 64, 48, "cam");
             Renderer& r = *renderer;
@@ -43,10 +45,10 @@ TEST_F(GLTest, DeepGBufferLayer2DepthAndMinimumSeparation) {
             s.lengthUnit = 1.0f;  // the lengths below are in scene units
             s.minSeparation = dz;
             for (int i = 0; i < 3; ++i) r.render(s);
-            EXPECT_EQ(r.lastGeometryPasses(), generation == 0 ? 1 : 2);
+            EXPECT_EQ(r.lastGeometryPasses(), generation == GBufferGeneration::Predicted ? 1 : 2);
             FloatImage d1 = r.readLayer("Depth 1"), d2 = r.readLayer("Depth 2");
-            EXPECT_NEAR(centre(d1), 2.0f, 2e-3f) << "generation " << generation;
-            EXPECT_NEAR(centre(d2), expected, 2e-3f * expected) << "generation " << generation << " dz " << dz;
+            EXPECT_NEAR(centre(d1), 2.0f, 2e-3f) << "generation " << int(generation);
+            EXPECT_NEAR(centre(d2), expected, 2e-3f * expected) << "generation " << int(generation) << " dz " << dz;
             // Where nothing is in front, layer 1 is the wall and layer 2 is empty (far plane).
             EXPECT_NEAR(d1.at(2, 2, 0), 6.0f, 2e-3f * 6.0f);
             EXPECT_GE(d2.at(2, 2, 0), r.camera().zfar * 0.999f);
@@ -62,7 +64,7 @@ TEST_F(GLTest, PredictedLayer2MatchesPeelingForStillCamera) {
         auto renderer = rendererFor(scene, 80, 60, "front");
         Renderer& r = *renderer;
         Settings s;
-        s.generation = g;
+        s.generation = GBufferGeneration(g);
         s.lengthUnit = 1.0f;  // the lengths below are in scene units
         s.minSeparation = 0.2f;
         for (int i = 0; i < 3; ++i) r.render(s);
@@ -161,7 +163,6 @@ TEST_F(GLTest, ReprojectionWithStillCameraReturnsLastOutput) {
 // and be exactly linear in B.
 TEST_F(GLTest, GatherUnderUniformlyLitCeilingMatchesAnalyticIrradiance) {
     auto s = std::make_shared<Scene>();
-    const glm::vec3 B(0.6f, 0.3f, 0.1f);
     int floorM = addMaterial(*s, glm::vec3(0.0f));
     int ceilM = addMaterial(*s, glm::vec3(0.0f), B, false);
     addFloor(*s, 50.0f, 0.0f, floorM);
@@ -311,7 +312,7 @@ TEST_F(GLTest, BufferReportGivesSeedLayout) {
     EXPECT_TRUE(shadow);
     // temporal_first adds exactly one 32-bit history buffer, counted as extra.
     Settings tf;
-    tf.filterOrder = 1;
+    tf.filterOrder = FilterOrder::TemporalFirst;
     r.prepare(tf);
     MemoryReport m2 = r.textures().memoryReport();
     EXPECT_EQ(m2.radiosityBitsPerPixel, 128);
@@ -324,5 +325,16 @@ TEST(SpiralTurns, MatchesPaperTable) {
     EXPECT_EQ(spiralTurns(19), 7);
     EXPECT_EQ(spiralTurns(30), 11);
     EXPECT_EQ(spiralTurns(50), 19);
-    EXPECT_EQ(spiralTurns(150), 5779);
+}
+
+// Tap i of N lies at angle 2 pi * turns * (i + 0.5) / N. For every N (the table's 1..99 and the fallback beyond):
+// turns coprime with N, so all N tap directions differ; and consecutive taps at least 1/6 of a turn apart in angle
+// (the table's worst case, N = 6), so the spiral never degenerates into taps lined up along a few rays.
+TEST(SpiralTurns, EveryTapCountGetsDistinctWellSpreadDirections) {
+    for (int n = 2; n < 4000; ++n) {
+        const int t = spiralTurns(n);
+        EXPECT_EQ(std::gcd(t, n), 1) << "N = " << n << ", turns " << t;
+        const double step = std::fmod(double(t) / n, 1.0);
+        EXPECT_GE(std::min(step, 1.0 - step), 1.0 / 6.0 - 1e-9) << "N = " << n << ", turns " << t;
+    }
 }

@@ -498,7 +498,7 @@ TEST_F(GLTest, ProbeVolumeShaderMatchesTheCpp) {
 
     const std::string lib = readText(std::string(DEEPGI_SHADER_DIR) + "/probe_volume.glsl");
     ASSERT_FALSE(lib.empty());
-    const std::string fs = "#version 450 core\n" + lib +
+    const std::string fs = "#version 450 core\n#define PROBE_VOLUME_FIXED_UNITS\n" + lib +
                            "uniform vec3 uPoints[" + std::to_string(N) + "];\nuniform vec3 uNormals[" +
                            std::to_string(N) +
                            "];\nout vec4 oColor;\nvoid main() { int i = int(gl_FragCoord.x);\n"

@@ -22,7 +22,7 @@ TEST(Settings, AssignmentParsesClampsAndRejects) {
     applyAssignment(s, "radiosity.samples=1000");  // clamped to the declared max
     EXPECT_EQ(s.numSamples, 99);
     applyAssignment(s, "gbuffer.generation=depth_peel");
-    EXPECT_EQ(s.generation, 1);
+    EXPECT_EQ(s.generation, GBufferGeneration::DepthPeel);
     applyAssignment(s, "blur.enabled=off");
     EXPECT_FALSE(s.blur);
     EXPECT_THROW(applyAssignment(s, "radiosity.samples=abc"), std::runtime_error);
@@ -34,7 +34,7 @@ TEST(Settings, AssignmentParsesClampsAndRejects) {
 TEST(Settings, JsonRoundTripAndPresets) {
     Settings a;
     a.radius = 2.5f;
-    a.filterOrder = 1;
+    a.filterOrder = FilterOrder::TemporalFirst;
     a.layer2 = false;
     Settings b;
     applySettingsJson(b, settingsToJson(a), "test");

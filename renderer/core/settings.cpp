@@ -11,9 +11,11 @@
 namespace deepgi {
 
 bool Settings::operator==(const Settings& o) const {
+#define DEEPGI_GROUP(Type)
 #define DEEPGI_SETTING(member, ...) if (member != o.member) return false;
 #define DEEPGI_ENUM(member, ...) if (member != o.member) return false;
 #include "renderer/core/settings.def"
+#undef DEEPGI_GROUP
 #undef DEEPGI_SETTING
 #undef DEEPGI_ENUM
     return true;
@@ -45,11 +47,13 @@ const std::vector<SettingInfo>& settingTable() {
                 [](const Settings& s) { return double(s.member); },                                            \
                 [](Settings& s, double v) { s.member = std::is_same<type, bool>::value ? type(v != 0.0)        \
                                                      : std::is_same<type, int>::value ? type(std::lround(v)) : type(v); }},
-#define DEEPGI_ENUM(member, key, def, choices, group, effect)                                                  \
-    SettingInfo{key, SettingType::Enum, double(def), 0.0, double(splitChoices(choices).size() - 1), "", group, \
-                effect, splitChoices(choices), [](const Settings& s) { return double(s.member); },             \
-                [](Settings& s, double v) { s.member = int(std::lround(v)); }},
+#define DEEPGI_ENUM(member, key, EnumType, def, choices, group, effect)                                        \
+    SettingInfo{key, SettingType::Enum, double(int(def)), 0.0, double(splitChoices(choices).size() - 1), "", group, \
+                effect, splitChoices(choices), [](const Settings& s) { return double(int(s.member)); },         \
+                [](Settings& s, double v) { s.member = EnumType(std::lround(v)); }},
+#define DEEPGI_GROUP(Type)
 #include "renderer/core/settings.def"
+#undef DEEPGI_GROUP
 #undef DEEPGI_SETTING
 #undef DEEPGI_ENUM
     };

@@ -6,12 +6,34 @@
 
 namespace deepgi {
 
-struct Settings {
+// The choices of the DEEPGI_ENUM settings, in the order of their choice strings in settings.def.
+enum class GBufferGeneration { Predicted, DepthPeel };
+enum class FilterOrder { BlurFirst, TemporalFirst };
+enum class CompositeMode { Physical, Seed };
+enum class Tonemap { Clamp, Aces };
+
+// One struct per DEEPGI_GROUP (Filament's Options.h): a pass reads only its stage's group,
+// `const BlurSettings& blur = settings;`.
+struct SettingsPrologue {  // empty: settings.def opens with a group
+#define DEEPGI_GROUP(Type) }; struct Type {
 #define DEEPGI_SETTING(member, key, type, def, lo, hi, unit, group, effect) type member = def;
-#define DEEPGI_ENUM(member, key, def, choices, group, effect) int member = def;
+#define DEEPGI_ENUM(member, key, EnumType, def, choices, group, effect) EnumType member = def;
 #include "renderer/core/settings.def"
+#undef DEEPGI_GROUP
 #undef DEEPGI_SETTING
 #undef DEEPGI_ENUM
+};
+
+// Every setting, flat (s.radius) through its groups.
+struct Settings : SettingsPrologue
+#define DEEPGI_GROUP(Type) , Type
+#define DEEPGI_SETTING(...)
+#define DEEPGI_ENUM(...)
+#include "renderer/core/settings.def"
+#undef DEEPGI_GROUP
+#undef DEEPGI_SETTING
+#undef DEEPGI_ENUM
+{
     bool operator==(const Settings& o) const;
     bool operator!=(const Settings& o) const { return !(*this == o); }
 };

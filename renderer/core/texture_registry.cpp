@@ -7,9 +7,28 @@
 
 namespace deepgi {
 
+void SizeRule::resolve(int screenW, int screenH, int shadowSize, int& w, int& h) const {
+    int bw = base == Base::Screen ? screenW : base == Base::ShadowMap ? shadowSize : fixedWidth;
+    int bh = base == Base::Screen ? screenH : base == Base::ShadowMap ? shadowSize : fixedHeight;
+    w = (bw > 0 ? int(std::ceil(double(bw) * scale)) : 0) + 2 * margin;
+    h = (bh > 0 ? int(std::ceil(double(bh) * scale)) : 0) + 2 * margin;
+    if (bw <= 0 || bh <= 0) w = h = 0;  // a minimised screen has no guard band either
+}
+
+std::string SizeRule::describe() const {
+    std::string s = base == Base::Screen ? "screen" : base == Base::ShadowMap ? "shadow map"
+                                                    : std::to_string(fixedWidth) + "x" + std::to_string(fixedHeight);
+    if (scale != 1.0f) {
+        if (scale < 1.0f && std::abs(1.0f / scale - std::round(1.0f / scale)) < 1e-4f) s += "/" + std::to_string(int(std::round(1.0f / scale)));
+        else s += " x" + std::to_string(scale);
+    }
+    if (margin != 0) s += " + " + std::to_string(margin) + " each side";
+    return s;
+}
+
 static bool sameDecl(const TextureDecl& a, const TextureDecl& b) {
     return a.name == b.name && a.layerNames == b.layerNames && a.format == b.format && a.target == b.target &&
-           a.size == b.size && a.levels == b.levels && a.fixedWidth == b.fixedWidth && a.fixedHeight == b.fixedHeight;
+           a.size == b.size && a.levels == b.levels;
 }
 
 uint64_t textureBytes(const TextureDecl& d, int w, int h, int levels) {
@@ -38,8 +57,8 @@ void TextureRegistry::reconcile(const std::vector<TextureDecl>& decls, int scree
     uint64_t total = 0;
     for (const auto& d : decls) {
         const bool cube = d.target == GL_TEXTURE_CUBE_MAP_ARRAY;
-        const int w = d.size == SizeRule::Screen ? screenW : d.size == SizeRule::Fixed ? d.fixedWidth : shadowSize;
-        const int h = d.size == SizeRule::Screen ? screenH : d.size == SizeRule::Fixed ? d.fixedHeight : shadowSize;
+        int w = 0, h = 0;
+        d.size.resolve(screenW, screenH, shadowSize, w, h);
         const int limit = cube ? maxCube : maxSize;
         if (limit > 0 && (w > limit || h > limit))
             throw std::runtime_error("cannot allocate texture '" + d.name + "' at " + std::to_string(w) + "x" +
@@ -63,8 +82,8 @@ void TextureRegistry::reconcile(const std::vector<TextureDecl>& decls, int scree
     std::vector<Entry> next;
     next.reserve(decls.size());
     for (const auto& d : decls) {
-        const int w = d.size == SizeRule::Screen ? screenW : d.size == SizeRule::Fixed ? d.fixedWidth : shadowSize;
-        const int h = d.size == SizeRule::Screen ? screenH : d.size == SizeRule::Fixed ? d.fixedHeight : shadowSize;
+        int w = 0, h = 0;
+        d.size.resolve(screenW, screenH, shadowSize, w, h);
         if (w <= 0 || h <= 0) throw std::runtime_error("texture '" + d.name + "' would have size 0");
         auto it = std::find_if(entries_.begin(), entries_.end(), [&](const Entry& e) { return e.decl.name == d.name; });
         if (it != entries_.end() && it->texture && sameDecl(it->decl, d) && it->width == w && it->height == h) {
@@ -136,8 +155,9 @@ MemoryReport TextureRegistry::memoryReport() const {
     for (const auto& e : entries_) {
         const TextureDecl& d = e.decl;
         const int bits = gl::formatBits(d.format);
-        const bool screen = d.size == SizeRule::Screen;
-        const char* groupName = d.group == MemoryGroup::GBuffer ? "G-buffer" : d.group == MemoryGroup::Radiosity ? "radiosity" : "extra";
+        const bool screen = d.size.screenSized();
+        const char* groupName = d.group == MemoryGroup::GBuffer ? "G-buffer" : d.group == MemoryGroup::Radiosity ? "radiosity"
+                                : d.group == MemoryGroup::Scratch ? "scratch" : "extra";
         const int faces = d.target == GL_TEXTURE_CUBE_MAP_ARRAY ? 6 : 1;
         for (int l = 0; l < d.layers(); ++l) {
             MemoryLine line{d.layerNames[l], gl::formatName(d.format), groupName, screen ? bits : 0,
@@ -155,6 +175,7 @@ MemoryReport TextureRegistry::memoryReport() const {
     for (const auto& l : r.lines) {
         if (l.group == "G-buffer") { r.gbufferBitsPerPixel += l.bitsPerPixel; r.gbufferBytes += l.bytes; }
         else if (l.group == "radiosity") { r.radiosityBitsPerPixel += l.bitsPerPixel; r.radiosityBytes += l.bytes; }
+        else if (l.group == "scratch") { r.scratchBitsPerPixel += l.bitsPerPixel; r.scratchBytes += l.bytes; }
         else { r.extraBitsPerPixel += l.bitsPerPixel; r.extraBytes += l.bytes; }
         r.totalBytes += l.bytes;
     }

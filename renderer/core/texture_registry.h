@@ -9,23 +9,43 @@
 
 namespace deepgi {
 
-enum class SizeRule { Screen, ShadowMap, Fixed };  // Fixed: TextureDecl::fixedWidth x fixedHeight
+// How a texture's level-0 size follows the frame: a base (the screen, the shadow-map size or a fixed size), times
+// `scale`, plus `margin` texels on every side (a guard band). Extensible by kind without touching the passes.
+struct SizeRule {
+    enum class Base { Screen, ShadowMap, Fixed };
+    Base base = Base::Screen;
+    float scale = 1.0f;   // of the base size (0.5 = half resolution), rounded up
+    int margin = 0;       // texels added on each side
+    int fixedWidth = 0, fixedHeight = 0;  // Base::Fixed only
+
+    static SizeRule screen(float scale = 1.0f, int margin = 0) { return {Base::Screen, scale, margin, 0, 0}; }
+    static SizeRule shadowMap() { return {Base::ShadowMap, 1.0f, 0, 0, 0}; }
+    static SizeRule fixed(int w, int h) { return {Base::Fixed, 1.0f, 0, w, h}; }
+    // Level-0 size for a screen of screenW x screenH and shadow maps of shadowSize.
+    void resolve(int screenW, int screenH, int shadowSize, int& w, int& h) const;
+    bool screenSized() const { return base == Base::Screen && scale == 1.0f && margin == 0; }
+    std::string describe() const;  // "screen", "screen/2 + 16", "shadow map", "256x256"
+    bool operator==(const SizeRule& o) const {
+        return base == o.base && scale == o.scale && margin == o.margin && fixedWidth == o.fixedWidth && fixedHeight == o.fixedHeight;
+    }
+    bool operator!=(const SizeRule& o) const { return !(*this == o); }
+};
 // Color: linear [0,1] colour (albedo); Display: already sRGB-encoded for the screen.
 enum class Visualize { Color, Radiance, Depth, Normal, ShadowDepth, Display };
 // Which total a texture counts towards in the memory report.
-enum class MemoryGroup { GBuffer, Radiosity, Extra };
+// Scratch: content that lives only inside one pass (ping-pong targets); never a frame's result.
+enum class MemoryGroup { GBuffer, Radiosity, Extra, Scratch };
 
 struct TextureDecl {
     std::string name;                     // unique, e.g. "Depth"
     std::vector<std::string> layerNames;  // one per layer, e.g. {"Depth 1", "Depth 2"}; size = layer count
     GLenum format = GL_RGBA8;
     GLenum target = GL_TEXTURE_2D;        // GL_TEXTURE_2D, GL_TEXTURE_2D_ARRAY or GL_TEXTURE_CUBE_MAP_ARRAY
-    SizeRule size = SizeRule::Screen;
+    SizeRule size = SizeRule::screen();
     int levels = 1;
     MemoryGroup group = MemoryGroup::Extra;
     Visualize vis = Visualize::Color;
     std::string description;
-    int fixedWidth = 0, fixedHeight = 0;  // SizeRule::Fixed only
     int layers() const { return int(layerNames.size()); }
 };
 
@@ -37,8 +57,8 @@ struct MemoryLine {
 
 struct MemoryReport {
     std::vector<MemoryLine> lines;
-    int gbufferBitsPerPixel = 0, radiosityBitsPerPixel = 0, extraBitsPerPixel = 0;
-    uint64_t gbufferBytes = 0, radiosityBytes = 0, extraBytes = 0, totalBytes = 0;
+    int gbufferBitsPerPixel = 0, radiosityBitsPerPixel = 0, extraBitsPerPixel = 0, scratchBitsPerPixel = 0;
+    uint64_t gbufferBytes = 0, radiosityBytes = 0, extraBytes = 0, scratchBytes = 0, totalBytes = 0;
 };
 
 class TextureRegistry {

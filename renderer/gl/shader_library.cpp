@@ -15,6 +15,16 @@ std::string ProgramDesc::key() const {
     return k;
 }
 
+std::string ProgramDesc::label() const {
+    std::string l = fragment.empty() ? (compute.empty() ? vertex : compute) : fragment;
+    if (!defines.empty()) {
+        l += " [";
+        for (size_t i = 0; i < defines.size(); ++i) l += (i ? " " : "") + defines[i];
+        l += "]";
+    }
+    return l;
+}
+
 namespace {
 
 int64_t mtimeOf(const std::string& path) {
@@ -178,14 +188,18 @@ GLuint ShaderLibrary::build(const ProgramDesc& desc, std::map<std::string, int64
     }
 }
 
-GLuint ShaderLibrary::get(const ProgramDesc& desc) {
+GLuint ShaderLibrary::get(const ProgramDesc& desc) { return getBuilt(desc).id; }
+
+ShaderLibrary::Built ShaderLibrary::getBuilt(const ProgramDesc& desc) {
     const std::string key = desc.key();
     auto it = entries_.find(key);
-    if (it != entries_.end() && it->second.program) return it->second.program;
+    if (it != entries_.end() && it->second.program) return {it->second.program, it->second.serial};
     Entry e;
     e.desc = desc;
     e.program = build(desc, e.files);  // throws on the first build
-    return entries_.insert_or_assign(key, std::move(e)).first->second.program;
+    e.serial = nextSerial_++;
+    const Entry& stored = entries_.insert_or_assign(key, std::move(e)).first->second;
+    return {stored.program, stored.serial};
 }
 
 int ShaderLibrary::reloadChanged() {
@@ -203,6 +217,7 @@ int ShaderLibrary::reloadChanged() {
             GLuint p = build(e.desc, files);
             if (e.program) glDeleteProgram(e.program);
             e.program = p;
+            e.serial = nextSerial_++;
             e.error.clear();
             ++rebuilt;
         } catch (const ShaderError& err) {

@@ -19,6 +19,7 @@ struct ProgramDesc {
     std::string vertex, geometry, fragment, compute;  // file names relative to the shader folder ("" = none)
     std::vector<std::string> defines;                 // "NAME" or "NAME VALUE"
     std::string key() const;
+    std::string label() const;  // "radiosity_gather.frag [DEEPGI_SINGLE_LAYER]", for messages
 };
 
 class ShaderLibrary {
@@ -31,6 +32,13 @@ public:
     // The program for desc, compiled on first use. Throws ShaderError ("file:line: message") if it has never
     // compiled successfully.
     GLuint get(const ProgramDesc& desc);
+    // The same, with a serial number that changes whenever the program is (re)linked: typed wrappers
+    // (gl::ProgramSlot) look their uniforms up again when it does.
+    struct Built {
+        GLuint id;
+        uint64_t serial;
+    };
+    Built getBuilt(const ProgramDesc& desc);
 
     // Recompiles the programs whose source files (includes too) changed on disk. Returns how many were rebuilt;
     // failures keep the last good program and are listed in errors().
@@ -44,6 +52,7 @@ private:
     struct Entry {
         ProgramDesc desc;
         GLuint program = 0;
+        uint64_t serial = 0;
         std::map<std::string, int64_t> files;  // path -> mtime at last build attempt
         std::string error;
     };
@@ -51,6 +60,7 @@ private:
     std::string dir_;
     std::map<std::string, Entry> entries_;
     std::vector<std::string> errors_;
+    uint64_t nextSerial_ = 1;
 };
 
 }  // namespace deepgi::gl

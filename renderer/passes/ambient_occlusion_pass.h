@@ -9,11 +9,25 @@ namespace deepgi {
 class AmbientOcclusionPass final : public RenderPass {
 public:
     const char* name() const override { return "Ambient occlusion"; }
-    void declare(const PipelineConfig& c, std::vector<TextureDecl>& out) const override;
-    std::vector<std::string> reads() const override { return {"Depth", "Normal"}; }
-    std::vector<std::string> writes() const override { return {"Ambient Occlusion"}; }
+    void table(const PipelineConfig& c, PassTable& t) const override;
     bool enabled(const PipelineConfig& c) const override { return c.ao; }
     void execute(FrameContext& ctx) override;
+
+private:
+    struct Program : gl::Program {
+        using gl::Program::Program;
+        gl::Uniform<int> numSamples{*this, "uNumSamples"};
+        gl::Uniform<float> spiralTurns{*this, "uSpiralTurns"};
+        gl::Uniform<float> radius{*this, "uRadius"};
+        gl::Uniform<int> maxMip{*this, "uMaxMip"};
+        gl::Uniform<int> minMip{*this, "uMinMip"};
+        gl::Uniform<int> logMaxOffset{*this, "uLogMaxOffset"};
+        gl::Uniform<bool> useLayer2{*this, "uUseLayer2"};
+        gl::Uniform<float> time{*this, "uTime"};
+        gl::Uniform<float> bias{*this, "uBias"};
+        gl::Uniform<float> intensity{*this, "uIntensity"};
+    };
+    gl::ProgramSlot<Program> program_;
 };
 
 }  // namespace deepgi

@@ -1,5 +1,7 @@
 #include "renderer/passes/bilateral_blur_pass.h"
 
+#include "renderer/passes/temporal_blend_pass.h"
+
 #include <algorithm>
 
 namespace deepgi {
@@ -15,44 +17,34 @@ std::vector<float> blurKernel(int radius) {
     }
 }
 
-GLuint scratchView(FrameContext& ctx, gl::TextureHandle& view, GLuint& viewOf, uint64_t& generation) {
-    const GLuint radiance = ctx.textures.id("Input Radiance");
-    if (!view || viewOf != radiance || generation != ctx.textures.generation()) {
-        view.reset();
-        GLuint id = 0;
-        glGenTextures(1, &id);  // a view needs a name that has never been bound
-        glTextureView(id, GL_TEXTURE_2D, radiance, GL_R11F_G11F_B10F, 0, 1, 1, 1);
-        glObjectLabel(GL_TEXTURE, id, -1, "Input Radiance 2 (scratch view)");
-        view = gl::TextureHandle(id);
-        viewOf = radiance;
-        generation = ctx.textures.generation();
-    }
-    return view.id();
+void BilateralBlurPass::table(const PipelineConfig& c, PassTable& t) const {
+    t.read("Depth", "uDepth").level(Levels::Base);
+    t.read("Normal", "uNormal").level(Levels::Base);
+    t.update("Output Radiance", "uSource").after(c.temporalFirst ? "Temporal blend" : "");
+    t.scratch(radiosityScratch(), "uSource");  // the vertical step reads the horizontal result
 }
 
 void BilateralBlurPass::execute(FrameContext& ctx) {
-    const Settings& s = ctx.settings;
-    const GLuint scratch = scratchView(ctx, scratchView_, viewOf_, viewGeneration_);
-    const GLuint output = ctx.textures.id("Output Radiance");
-    GLuint prog = ctx.shaders.get({"fullscreen.vert", "", "bilateral_blur.frag", "", {}});
-    std::vector<float> kernel = blurKernel(s.blurRadius);
+    const BlurSettings& b = ctx.settings;
+    const RadiositySettings& r = ctx.settings;
+    const GLuint scratch = ctx.texture("Radiosity Scratch"), output = ctx.texture("Output Radiance");
+    Program& prog = program_.get(ctx.shaders, {"fullscreen.vert", "", "bilateral_blur.frag", "", {}});
+    std::vector<float> kernel = blurKernel(b.blurRadius);
     kernel.resize(7, 0.0f);
-    glProgramUniform1fv(prog, glGetUniformLocation(prog, "uKernel"), 7, kernel.data());
-    setUniform(prog, "uRadius", std::clamp(s.blurRadius, 1, 6));
-    setUniform(prog, "uStep", std::max(1, s.blurStep));
-    setUniform(prog, "uEdgeSharpness", s.edgeSharpness);
-    setUniform(prog, "uMonotonic", s.monotonicWeights ? 1 : 0);
-    const float eps = 0.025f * s.radius;  // "same surface" distance, relative to the gather radius
-    setUniform(prog, "uPlaneEpsilon2", eps * eps);
-    glBindTextureUnit(4, ctx.textures.id("Depth"));
-    glBindTextureUnit(8, ctx.textures.id("Normal"));
+    prog.kernel.set(kernel.data());
+    prog.radius.set(std::clamp(b.blurRadius, 1, 6));
+    prog.step.set(std::max(1, b.blurStep));
+    prog.edgeSharpness.set(b.edgeSharpness);
+    prog.monotonic.set(b.monotonicWeights);
+    const float eps = 0.025f * r.radius;  // "same surface" distance, relative to the gather radius
+    prog.planeEpsilon2.set(eps * eps);
     // Horizontal: Output -> scratch; vertical: scratch -> Output.
-    setUniform(prog, "uAxis", glm::ivec2(1, 0));
-    glBindTextureUnit(12, output);
-    ctx.drawFullscreen(prog, ctx.fbos.get({{GL_COLOR_ATTACHMENT0, scratch}}, "blur scratch"), ctx.width, ctx.height);
-    setUniform(prog, "uAxis", glm::ivec2(0, 1));
-    glBindTextureUnit(12, scratch);
-    ctx.drawFullscreen(prog, ctx.fbos.get({{GL_COLOR_ATTACHMENT0, output}}, "output radiance"), ctx.width, ctx.height);
+    prog.axis.set(glm::ivec2(1, 0));
+    ctx.bindSamplers(prog, {{"uSource", "Output Radiance"}});
+    ctx.drawFullscreen(prog.id(), ctx.fbos.get({{GL_COLOR_ATTACHMENT0, scratch}}, "radiosity scratch"), ctx.width, ctx.height);
+    prog.axis.set(glm::ivec2(0, 1));
+    ctx.bindSamplers(prog, {{"uSource", "Radiosity Scratch"}});
+    ctx.drawFullscreen(prog.id(), ctx.fbos.get({{GL_COLOR_ATTACHMENT0, output}}, "output radiance"), ctx.width, ctx.height);
 }
 
 }  // namespace deepgi

@@ -1,6 +1,6 @@
 #include "renderer/passes/buffer_view_pass.h"
 
-#include "renderer/passes/pass.h"
+#include "renderer/gl/program.h"
 
 #include <algorithm>
 #include <cmath>
@@ -21,12 +21,43 @@ int resolveMode(ViewMode m, Visualize vis) {
     }
 }
 
-void setUniformAt(GLuint prog, const char* name, int index, int v) {
-    const std::string n = std::string(name) + "[" + std::to_string(index) + "]";
-    glProgramUniform1i(prog, glGetUniformLocation(prog, n.c_str()), v);
-}
+std::string at(const char* name, int i) { return std::string(name) + "[" + std::to_string(i) + "]"; }
+
+// Units of the view's own samplers (it is not a pipeline pass, so it has no table): 2D and array view of A, of B.
+constexpr int kUnit2D[2] = {0, 2}, kUnitArray[2] = {1, 3};
 
 }  // namespace
+
+struct BufferViewPass::Program : gl::Program {
+    struct Source {
+        Source(gl::Program& p, int i)
+            : isArray(p, at("uIsArray", i).c_str()), layer(p, at("uLayer", i).c_str()), faces(p, at("uFaces", i).c_str()),
+              level(p, at("uLevel", i).c_str()), mode(p, at("uMode", i).c_str()), size(p, at("uSize", i).c_str()) {}
+        gl::Uniform<bool> isArray;
+        gl::Uniform<int> layer, faces, level, mode;
+        gl::Uniform<glm::ivec2> size;
+    };
+    Program(GLuint id, std::string name) : gl::Program(id, std::move(name)) {
+        setSampler("uTex2DA", kUnit2D[0]);
+        setSampler("uTexArrA", kUnitArray[0]);
+        setSampler("uTex2DB", kUnit2D[1]);
+        setSampler("uTexArrB", kUnitArray[1]);
+    }
+    Source source[2]{{*this, 0}, {*this, 1}};
+    gl::Uniform<bool> hasB{*this, "uHasB"};
+    gl::Uniform<int> channel{*this, "uChannel"};
+    gl::Uniform<float> exposure{*this, "uExposure"};
+    gl::Uniform<glm::vec2> range{*this, "uRange"};
+    gl::Uniform<bool> useRange{*this, "uUseRange"};
+    gl::Uniform<bool> highlight{*this, "uHighlight"};
+    gl::Uniform<glm::vec2> origin{*this, "uOrigin"};
+    gl::Uniform<float> texelsPerPixel{*this, "uTexelsPerPixel"};
+    gl::Uniform<bool> grid{*this, "uGrid"};
+    gl::Uniform<glm::vec4> background{*this, "uBackground"};
+    gl::Uniform<glm::vec2> clip{*this, "uClip"};
+    gl::Uniform<bool> persp{*this, "uPersp"};
+    gl::Uniform<float> splitX{*this, "uSplitX"};
+};
 
 int BufferSource::levelWidth() const { return std::max(1, width >> level) * (target == GL_TEXTURE_CUBE_MAP_ARRAY ? 6 : 1); }
 int BufferSource::levelHeight() const { return std::max(1, height >> level); }
@@ -58,7 +89,7 @@ int BufferViewPass::channelCount(GLenum format) {
     }
 }
 
-BufferViewPass::BufferViewPass() {
+BufferViewPass::BufferViewPass() : program_(std::make_unique<gl::ProgramSlot<Program>>()) {
     fbo_ = gl::createFramebuffer("buffer view");
     vao_ = gl::createVertexArray("buffer view triangle");
     sampler_ = gl::createSampler("buffer view sampler");
@@ -66,6 +97,8 @@ BufferViewPass::BufferViewPass() {
     glSamplerParameteri(sampler_.id(), GL_TEXTURE_MIN_FILTER, GL_NEAREST_MIPMAP_NEAREST);
     glSamplerParameteri(sampler_.id(), GL_TEXTURE_MAG_FILTER, GL_NEAREST);
 }
+
+BufferViewPass::~BufferViewPass() = default;
 
 GLuint BufferViewPass::viewOf(const BufferSource& s) {
     if (s.target != GL_TEXTURE_CUBE_MAP_ARRAY) return s.texture;
@@ -94,40 +127,39 @@ void BufferViewPass::draw(gl::ShaderLibrary& shaders, const BufferSource& a, con
         outW_ = outW;
         outH_ = outH;
     }
-    const GLuint prog = shaders.get({"fullscreen.vert", "", "buffer_view.frag", "", {}});
+    Program& prog = program_->get(shaders, {"fullscreen.vert", "", "buffer_view.frag", "", {}});
     const bool hasB = b && b->valid();
     const BufferSource* srcs[2] = {&a, hasB ? b : &a};
     for (int i = 0; i < 2; ++i) {
         const BufferSource& s = *srcs[i];
         const bool array = s.target != GL_TEXTURE_2D;
         const GLuint tex = s.valid() ? viewOf(s) : 0;
-        glBindTextureUnit(GLuint(i * 2 + 0), array ? 0 : tex);
-        glBindTextureUnit(GLuint(i * 2 + 1), array ? tex : 0);
-        setUniformAt(prog, "uIsArray", i, array ? 1 : 0);
-        setUniformAt(prog, "uLayer", i, s.target == GL_TEXTURE_CUBE_MAP_ARRAY ? s.layer * 6 : s.layer);
-        setUniformAt(prog, "uFaces", i, s.target == GL_TEXTURE_CUBE_MAP_ARRAY ? 6 : 1);
-        setUniformAt(prog, "uLevel", i, s.level);
-        setUniformAt(prog, "uMode", i, resolveMode(p.mode, s.vis));
-        const glm::ivec2 size(std::max(1, s.width >> s.level), std::max(1, s.height >> s.level));
-        glProgramUniform2i(prog, glGetUniformLocation(prog, ("uSize[" + std::to_string(i) + "]").c_str()), size.x, size.y);
+        glBindTextureUnit(GLuint(kUnit2D[i]), array ? 0 : tex);
+        glBindTextureUnit(GLuint(kUnitArray[i]), array ? tex : 0);
+        const Program::Source& u = prog.source[i];
+        u.isArray.set(array);
+        u.layer.set(s.target == GL_TEXTURE_CUBE_MAP_ARRAY ? s.layer * 6 : s.layer);
+        u.faces.set(s.target == GL_TEXTURE_CUBE_MAP_ARRAY ? 6 : 1);
+        u.level.set(s.level);
+        u.mode.set(resolveMode(p.mode, s.vis));
+        u.size.set(glm::ivec2(std::max(1, s.width >> s.level), std::max(1, s.height >> s.level)));
     }
     // Depth textures may carry a compare mode (shadow maps): a sampler object without it makes texelFetch defined.
     for (GLuint u = 0; u < 4; ++u) glBindSampler(u, sampler_.id());
 
-    setUniform(prog, "uHasB", hasB ? 1 : 0);
-    setUniform(prog, "uChannel", int(p.channel));
-    setUniform(prog, "uExposure", std::exp2(p.exposureEV));
-    setUniform(prog, "uRange", glm::vec2(p.rangeMin, p.rangeMax));
-    setUniform(prog, "uUseRange", p.useRange ? 1 : 0);
-    setUniform(prog, "uHighlight", p.highlight ? 1 : 0);
-    setUniform(prog, "uOrigin", p.origin);
-    setUniform(prog, "uTexelsPerPixel", std::max(p.texelsPerPixel, 1e-6f));
-    setUniform(prog, "uGrid", p.grid ? 1 : 0);
-    glProgramUniform4f(prog, glGetUniformLocation(prog, "uBackground"), p.background.x, p.background.y, p.background.z,
-                       p.background.w);
-    setUniform(prog, "uClip", glm::vec2(p.znear, p.zfar));
-    setUniform(prog, "uPersp", p.perspective ? 1 : 0);
-    setUniform(prog, "uSplitX", p.splitX * float(outW));
+    prog.hasB.set(hasB);
+    prog.channel.set(int(p.channel));
+    prog.exposure.set(std::exp2(p.exposureEV));
+    prog.range.set(glm::vec2(p.rangeMin, p.rangeMax));
+    prog.useRange.set(p.useRange);
+    prog.highlight.set(p.highlight);
+    prog.origin.set(p.origin);
+    prog.texelsPerPixel.set(std::max(p.texelsPerPixel, 1e-6f));
+    prog.grid.set(p.grid);
+    prog.background.set(p.background);
+    prog.clip.set(glm::vec2(p.znear, p.zfar));
+    prog.persp.set(p.perspective);
+    prog.splitX.set(p.splitX * float(outW));
 
     glBindFramebuffer(GL_FRAMEBUFFER, fbo_.id());
     glViewport(0, 0, outW, outH);
@@ -135,7 +167,7 @@ void BufferViewPass::draw(gl::ShaderLibrary& shaders, const BufferSource& a, con
     glDisable(GL_CULL_FACE);
     glDisable(GL_BLEND);
     glDisable(GL_SCISSOR_TEST);
-    glUseProgram(prog);
+    glUseProgram(prog.id());
     glBindVertexArray(vao_.id());
     glDrawArrays(GL_TRIANGLES, 0, 3);
     glBindFramebuffer(GL_FRAMEBUFFER, 0);

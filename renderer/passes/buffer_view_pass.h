@@ -10,7 +10,12 @@
 #include "renderer/gl/shader_library.h"
 
 #include <glm/glm.hpp>
+#include <memory>
 #include <string>
+
+namespace deepgi::gl {
+template <class P> class ProgramSlot;
+}
 
 namespace deepgi {
 
@@ -67,6 +72,7 @@ struct TexelBlock {
 class BufferViewPass {
 public:
     BufferViewPass();
+    ~BufferViewPass();
     // Draws `a` (and `b` right of the split, if valid) into the output texture of outW x outH.
     // Throws gl::ShaderError if buffer_view.frag has never compiled.
     void draw(gl::ShaderLibrary& shaders, const BufferSource& a, const BufferSource* b, const BufferViewParams& p,
@@ -82,6 +88,8 @@ public:
 
 private:
     GLuint viewOf(const BufferSource& s);  // a 2D-array view of a cube-map array (cached)
+    struct Program;
+    std::unique_ptr<gl::ProgramSlot<Program>> program_;
     gl::TextureHandle out_;
     gl::FramebufferHandle fbo_;
     gl::VertexArrayHandle vao_;

@@ -4,31 +4,33 @@
 
 namespace deepgi {
 
-void CompositePass::declare(const PipelineConfig&, std::vector<TextureDecl>& out) const {
-    out.push_back({"Final Radiance", {"Final Radiance"}, GL_RGBA16F, GL_TEXTURE_2D, SizeRule::Screen, 1, MemoryGroup::Extra,
-                   Visualize::Radiance, "Linear radiance of the final image (what final.exr holds)"});
-    out.push_back({"Final Display", {"Final Display"}, GL_RGBA8, GL_TEXTURE_2D, SizeRule::Screen, 1, MemoryGroup::Extra,
-                   Visualize::Display, "Exposed, tone-mapped, sRGB-encoded final image (what final.png holds)"});
+void CompositePass::table(const PipelineConfig& c, PassTable& t) const {
+    t.read("Depth", "uDepth").level(Levels::Base);
+    t.read("Albedo", "uAlbedo");
+    t.read("Normal", "uNormal").level(Levels::Base);
+    t.read("Emission", "uEmission").optional(!c.emission);
+    t.read("Input Radiance", "uRadiance").level(Levels::Base).optional(!c.seedComposite);  // seed formula only
+    t.read("Output Radiance", "uIndirect").optional(!c.indirect);
+    readShadowMaps(t);
+    t.write({"Final Radiance", {"Final Radiance"}, GL_RGBA16F, GL_TEXTURE_2D, SizeRule::screen(), 1, MemoryGroup::Extra,
+             Visualize::Radiance, "Linear radiance of the final image (what final.exr holds)"});
+    t.write({"Final Display", {"Final Display"}, GL_RGBA8, GL_TEXTURE_2D, SizeRule::screen(), 1, MemoryGroup::Extra,
+             Visualize::Display, "Exposed, tone-mapped, sRGB-encoded final image (what final.png holds)"});
 }
 
 void CompositePass::execute(FrameContext& ctx) {
-    const Settings& s = ctx.settings;
-    GLuint prog = ctx.shaders.get({"fullscreen.vert", "", "composite.frag", "", {}});
-    ctx.setLightUniforms(prog);
-    setUniform(prog, "uHasEmission", ctx.config.emission ? 1 : 0);
-    setUniform(prog, "uIndirectOn", ctx.config.indirect ? 1 : 0);
-    setUniform(prog, "uSeedMode", ctx.config.seedComposite ? 1 : 0);
-    setUniform(prog, "uExposure", std::exp2(s.exposure));
-    setUniform(prog, "uTonemap", s.tonemap);
-    glBindTextureUnit(4, ctx.textures.id("Depth"));
-    glBindTextureUnit(7, ctx.textures.id("Albedo"));
-    glBindTextureUnit(8, ctx.textures.id("Normal"));
-    glBindTextureUnit(9, ctx.config.emission ? ctx.textures.id("Emission") : 0);
-    glBindTextureUnit(11, ctx.textures.id("Input Radiance"));
-    glBindTextureUnit(12, ctx.textures.id("Output Radiance"));
-    GLuint fbo = ctx.fbos.get({{GL_COLOR_ATTACHMENT0, ctx.textures.id("Final Radiance")},
-                               {GL_COLOR_ATTACHMENT1, ctx.textures.id("Final Display")}}, "final");
-    ctx.drawFullscreen(prog, fbo, ctx.width, ctx.height);
+    const CompositeSettings& s = ctx.settings;
+    Program& prog = program_.get(ctx.shaders, {"fullscreen.vert", "", "composite.frag", "", {}});
+    prog.lighting.set(ctx);
+    prog.hasEmission.set(ctx.config.emission);
+    prog.indirectOn.set(ctx.config.indirect);
+    prog.seedMode.set(ctx.config.seedComposite);
+    prog.exposure.set(std::exp2(s.exposure));
+    prog.tonemap.set(int(s.tonemap));
+    ctx.bindSamplers(prog);
+    GLuint fbo = ctx.fbos.get({{GL_COLOR_ATTACHMENT0, ctx.texture("Final Radiance")},
+                               {GL_COLOR_ATTACHMENT1, ctx.texture("Final Display")}}, "final");
+    ctx.drawFullscreen(prog.id(), fbo, ctx.width, ctx.height);
 }
 
 }  // namespace deepgi

@@ -7,10 +7,20 @@ namespace deepgi {
 class CompositePass final : public RenderPass {
 public:
     const char* name() const override { return "Composite"; }
-    void declare(const PipelineConfig& c, std::vector<TextureDecl>& out) const override;
-    std::vector<std::string> reads() const override { return {"Depth", "Albedo", "Normal", "Emission", "Input Radiance 1", "Output Radiance", "Shadow Maps", "Shadow Cubes"}; }
-    std::vector<std::string> writes() const override { return {"Final Radiance", "Final Display"}; }
+    void table(const PipelineConfig& c, PassTable& t) const override;
     void execute(FrameContext& ctx) override;
+
+private:
+    struct Program : gl::Program {
+        using gl::Program::Program;
+        LightingUniforms lighting{*this};
+        gl::Uniform<bool> hasEmission{*this, "uHasEmission"};
+        gl::Uniform<bool> indirectOn{*this, "uIndirectOn"};
+        gl::Uniform<bool> seedMode{*this, "uSeedMode"};
+        gl::Uniform<float> exposure{*this, "uExposure"};
+        gl::Uniform<int> tonemap{*this, "uTonemap"};
+    };
+    gl::ProgramSlot<Program> program_;
 };
 
 }  // namespace deepgi

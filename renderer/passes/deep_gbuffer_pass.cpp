@@ -4,53 +4,57 @@ namespace deepgi {
 
 static constexpr int kGatherLevels = 6;  // mip levels 0..5 read by the radiosity gather
 
-void DeepGBufferPass::declare(const PipelineConfig& c, std::vector<TextureDecl>& out) const {
-    out.push_back({"Depth", {"Depth 1", "Depth 2"}, GL_DEPTH_COMPONENT32, GL_TEXTURE_2D_ARRAY, SizeRule::Screen,
-                   kGatherLevels, MemoryGroup::GBuffer, Visualize::Depth,
-                   "Hyperbolic depth of both layers; layer 2 is the nearest surface at least min-separation behind layer 1"});
-    out.push_back({"Albedo", {"Albedo 1", "Albedo 2"}, GL_RGB8, GL_TEXTURE_2D_ARRAY, SizeRule::Screen, 1,
-                   MemoryGroup::GBuffer, Visualize::Color, "Lambertian albedo (base colour x texture) of both layers"});
-    out.push_back({"Normal", {"Normal 1", "Normal 2"}, GL_RG8_SNORM, GL_TEXTURE_2D_ARRAY, SizeRule::Screen,
-                   kGatherLevels, MemoryGroup::GBuffer, Visualize::Normal, "World-space normal of both layers, oct16 encoded"});
-    out.push_back({"Last Depth", {"Last Depth"}, GL_DEPTH_COMPONENT32, GL_TEXTURE_2D, SizeRule::Screen, 1,
-                   MemoryGroup::GBuffer, Visualize::Depth, "Layer-1 depth of the previous frame (predicts layer 1 for the separation test)"});
+void DeepGBufferPass::table(const PipelineConfig& c, PassTable& t) const {
+    t.history("Depth").level(Levels::Base);  // layer 1 of last frame, copied into Last Depth before the draw
+    t.write({"Depth", {"Depth 1", "Depth 2"}, GL_DEPTH_COMPONENT32, GL_TEXTURE_2D_ARRAY, SizeRule::screen(),
+             kGatherLevels, MemoryGroup::GBuffer, Visualize::Depth,
+             "Hyperbolic depth of both layers; layer 2 is the nearest surface at least min-separation behind layer 1"})
+        .level(Levels::Base);
+    t.write({"Albedo", {"Albedo 1", "Albedo 2"}, GL_RGB8, GL_TEXTURE_2D_ARRAY, SizeRule::screen(), 1,
+             MemoryGroup::GBuffer, Visualize::Color, "Lambertian albedo (base colour x texture) of both layers"});
+    t.write({"Normal", {"Normal 1", "Normal 2"}, GL_RG8_SNORM, GL_TEXTURE_2D_ARRAY, SizeRule::screen(),
+             kGatherLevels, MemoryGroup::GBuffer, Visualize::Normal, "World-space normal of both layers, oct16 encoded"})
+        .level(Levels::Base);
+    t.write({"Last Depth", {"Last Depth"}, GL_DEPTH_COMPONENT32, GL_TEXTURE_2D, SizeRule::screen(), 1,
+             MemoryGroup::GBuffer, Visualize::Depth, "Layer-1 depth of the previous frame (predicts layer 1 for the separation test)"},
+            "uLastDepth");
     if (c.emission)
-        out.push_back({"Emission", {"Emission 1", "Emission 2"}, GL_R11F_G11F_B10F, GL_TEXTURE_2D_ARRAY, SizeRule::Screen, 1,
-                       MemoryGroup::Extra, Visualize::Radiance, "Emitted radiance of both layers (only for scenes with emissive materials)"});
+        t.write({"Emission", {"Emission 1", "Emission 2"}, GL_R11F_G11F_B10F, GL_TEXTURE_2D_ARRAY, SizeRule::screen(), 1,
+                 MemoryGroup::Extra, Visualize::Radiance, "Emitted radiance of both layers (only for scenes with emissive materials)"});
     if (c.depthPeel)
-        out.push_back({"Peel Depth", {"Peel Depth"}, GL_DEPTH_COMPONENT32, GL_TEXTURE_2D, SizeRule::Screen, 1,
-                       MemoryGroup::Extra, Visualize::Depth, "Copy of this frame's layer-1 depth for exact depth peeling (depth_peel mode only)"});
+        t.write({"Peel Depth", {"Peel Depth"}, GL_DEPTH_COMPONENT32, GL_TEXTURE_2D, SizeRule::screen(), 1,
+                 MemoryGroup::Extra, Visualize::Depth, "Copy of this frame's layer-1 depth for exact depth peeling (depth_peel mode only)"},
+                "uPeelDepth");
 }
 
-void DeepGBufferPass::drawScene(FrameContext& ctx, int firstLayer, int layerCount, bool peel, GLuint peelDepth) {
+void DeepGBufferPass::drawScene(FrameContext& ctx, int firstLayer, int layerCount, bool peel, const char* peelDepth) {
+    const GBufferSettings& g = ctx.settings;
     for (bool masked : {false, true}) {
         if (masked ? !ctx.scene.hasMasked() : !ctx.scene.hasOpaque()) continue;
         std::vector<std::string> defs;
         if (masked) defs.push_back("MASKED");
         if (ctx.config.emission) defs.push_back("EMISSION");
-        GLuint prog = ctx.shaders.get({"deep_gbuffer.vert", "deep_gbuffer.geom", "deep_gbuffer.frag", "", defs});
-        glUseProgram(prog);
-        setUniform(prog, "uFirstLayer", firstLayer);
-        setUniform(prog, "uLayerCount", layerCount);
-        setUniform(prog, "uMinSeparation", ctx.settings.minSeparation);
-        setUniform(prog, "uPeel", peel ? 1 : 0);
-        setUniform(prog, "uHaveHistory", ctx.historyValid ? 1 : 0);
-        glBindTextureUnit(2, ctx.textures.id("Last Depth"));
-        glBindTextureUnit(3, peelDepth);
-        ctx.scene.draw(prog, masked, true);
+        Program& prog = program_.get(ctx.shaders, {"deep_gbuffer.vert", "deep_gbuffer.geom", "deep_gbuffer.frag", "", defs});
+        glUseProgram(prog.id());
+        prog.firstLayer.set(firstLayer);
+        prog.layerCount.set(layerCount);
+        prog.minSeparation.set(g.minSeparation);
+        prog.peel.set(peel);
+        ctx.bindSamplers(prog, {{"uPeelDepth", peelDepth}});
+        ctx.scene.draw(prog.id(), masked, true);
     }
 }
 
 void DeepGBufferPass::execute(FrameContext& ctx) {
     const int w = ctx.width, h = ctx.height;
-    const GLuint depth = ctx.textures.id("Depth"), lastDepth = ctx.textures.id("Last Depth");
+    const GLuint depth = ctx.texture("Depth"), lastDepth = ctx.texture("Last Depth");
     // Before the draw: this frame's Last Depth is last frame's Depth 1.
     glCopyImageSubData(depth, GL_TEXTURE_2D_ARRAY, 0, 0, 0, 0, lastDepth, GL_TEXTURE_2D, 0, 0, 0, 0, w, h, 1);
 
     std::vector<FramebufferCache::Attachment> atts = {{GL_DEPTH_ATTACHMENT, depth},
-                                                      {GL_COLOR_ATTACHMENT0, ctx.textures.id("Albedo")},
-                                                      {GL_COLOR_ATTACHMENT1, ctx.textures.id("Normal")}};
-    if (ctx.config.emission) atts.push_back({GL_COLOR_ATTACHMENT2, ctx.textures.id("Emission")});
+                                                      {GL_COLOR_ATTACHMENT0, ctx.texture("Albedo")},
+                                                      {GL_COLOR_ATTACHMENT1, ctx.texture("Normal")}};
+    if (ctx.config.emission) atts.push_back({GL_COLOR_ATTACHMENT2, ctx.texture("Emission")});
     GLuint fbo = ctx.fbos.get(atts, "deep G-buffer");
     glBindFramebuffer(GL_FRAMEBUFFER, fbo);
     glViewport(0, 0, w, h);
@@ -67,19 +71,20 @@ void DeepGBufferPass::execute(FrameContext& ctx) {
 
     const bool peel = ctx.config.depthPeel || !ctx.historyValid;
     if (!ctx.config.layer2) {
-        drawScene(ctx, 0, 1, false, 0);
+        drawScene(ctx, 0, 1, false, "Last Depth");
         geometryPasses_ = 1;
     } else if (!peel) {
-        drawScene(ctx, 0, 2, false, 0);  // one geometry pass, both layers
+        drawScene(ctx, 0, 2, false, "Last Depth");  // one geometry pass, both layers
         geometryPasses_ = 1;
     } else {
-        drawScene(ctx, 0, 1, false, 0);
+        drawScene(ctx, 0, 1, false, "Last Depth");
         // Exact layer 1 for the peel: a separate copy in depth_peel mode; Last Depth on a history reset (its
         // content is then meaningless anyway, and the reprojection ignores it).
-        GLuint peelTex = ctx.config.depthPeel ? ctx.textures.id("Peel Depth") : lastDepth;
+        const char* peelName = ctx.config.depthPeel ? "Peel Depth" : "Last Depth";
+        GLuint peelTex = ctx.texture(peelName);
         glCopyImageSubData(depth, GL_TEXTURE_2D_ARRAY, 0, 0, 0, 0, peelTex, GL_TEXTURE_2D, 0, 0, 0, 0, w, h, 1);
         glBindFramebuffer(GL_FRAMEBUFFER, fbo);
-        drawScene(ctx, 1, 1, true, peelTex);
+        drawScene(ctx, 1, 1, true, peelName);
         geometryPasses_ = 2;
     }
     glDisable(GL_DEPTH_TEST);

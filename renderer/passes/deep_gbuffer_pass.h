@@ -9,15 +9,21 @@ namespace deepgi {
 class DeepGBufferPass final : public RenderPass {
 public:
     const char* name() const override { return "Deep G-buffer"; }
-    void declare(const PipelineConfig& c, std::vector<TextureDecl>& out) const override;
-    std::vector<std::string> reads() const override { return {"Depth", "Peel Depth"}; }
-    std::vector<std::string> writes() const override { return {"Depth", "Albedo", "Normal", "Emission", "Last Depth"}; }
+    void table(const PipelineConfig& c, PassTable& t) const override;
     void execute(FrameContext& ctx) override;
     // Number of geometry passes in the last execute (1 predicted, 2 peeled).
     int lastGeometryPasses() const { return geometryPasses_; }
 
 private:
-    void drawScene(FrameContext& ctx, int firstLayer, int layerCount, bool peel, GLuint peelDepth);
+    struct Program : gl::Program {
+        Program(GLuint id, std::string name) : gl::Program(id, std::move(name)) { externalSampler("uBaseTex"); externalSampler("uEmissiveTex"); }
+        gl::Uniform<int> firstLayer{*this, "uFirstLayer"};
+        gl::Uniform<int> layerCount{*this, "uLayerCount"};
+        gl::Uniform<float> minSeparation{*this, "uMinSeparation"};
+        gl::Uniform<bool> peel{*this, "uPeel"};
+    };
+    void drawScene(FrameContext& ctx, int firstLayer, int layerCount, bool peel, const char* peelDepth);
+    gl::ProgramSlot<Program> program_;
     int geometryPasses_ = 0;
 };
 

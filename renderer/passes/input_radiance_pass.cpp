@@ -6,45 +6,54 @@
 
 namespace deepgi {
 
-void InputRadiancePass::declare(const PipelineConfig&, std::vector<TextureDecl>& out) const {
-    out.push_back({"Input Radiance", {"Input Radiance 1", "Input Radiance 2"}, GL_R11F_G11F_B10F, GL_TEXTURE_2D_ARRAY,
-                   SizeRule::Screen, 6, MemoryGroup::Radiosity, Visualize::Radiance,
-                   "Outgoing radiance of both layers (what the gather collects); layer 2 is the blur's scratch afterwards, as in the seed"});
+void InputRadiancePass::table(const PipelineConfig& c, PassTable& t) const {
+    // With indirect light the pass also builds the mip levels of Depth and Normal from their level 0.
+    if (c.indirect) {
+        t.update("Depth", "uDepth").level(Levels::Mips);
+        t.update("Normal", "uNormal").level(Levels::Mips);
+    } else {
+        t.read("Depth", "uDepth").level(Levels::Base);
+        t.read("Normal", "uNormal").level(Levels::Base);
+    }
+    t.read("Albedo", "uAlbedo");
+    t.read("Emission", "uEmission").optional(!c.emission);
+    t.read("Reprojected Radiance", "uReprojected").optional(!c.indirect);  // the multi-bounce feedback
+    readShadowMaps(t);
+    if (c.probes) readProbeVolume(t);  // layer 2's indirect light, and layer 1's before there is a history
+    t.write({"Input Radiance", {"Input Radiance 1", "Input Radiance 2"}, GL_R11F_G11F_B10F, GL_TEXTURE_2D_ARRAY,
+             SizeRule::screen(), 6, MemoryGroup::Radiosity, Visualize::Radiance,
+             "Outgoing radiance of both layers (what the gather collects)"},
+            "uRadiance");
 }
 
 void InputRadiancePass::execute(FrameContext& ctx) {
-    const GLuint radiance = ctx.textures.id("Input Radiance");
+    const RadiositySettings& s = ctx.settings;
+    const GLuint radiance = ctx.texture("Input Radiance");
     std::vector<std::string> defines;
     if (ctx.config.probes) defines.push_back("DEEPGI_PROBES");
-    GLuint prog = ctx.shaders.get({"fullscreen.vert", "", "input_radiance.frag", "", defines});
-    if (ctx.config.probes) bindProbeVolume(ctx);
-    ctx.setLightUniforms(prog);
-    setUniform(prog, "uHasEmission", ctx.config.emission ? 1 : 0);
-    setUniform(prog, "uFeedback", ctx.config.indirect && ctx.historyValid ? 1 : 0);
-    setUniform(prog, "uDamping", ctx.settings.damping);
-    glBindTextureUnit(4, ctx.textures.id("Depth"));
-    glBindTextureUnit(7, ctx.textures.id("Albedo"));
-    glBindTextureUnit(8, ctx.textures.id("Normal"));
-    glBindTextureUnit(9, ctx.config.emission ? ctx.textures.id("Emission") : 0);
-    glBindTextureUnit(10, ctx.config.indirect ? ctx.textures.id("Reprojected Radiance") : 0);
+    RadianceProgram& prog = radiance_.get(ctx.shaders, {"fullscreen.vert", "", "input_radiance.frag", "", defines});
+    if (ctx.config.probes) bindProbeUniforms(ctx);
+    prog.lighting.set(ctx);
+    prog.hasEmission.set(ctx.config.emission);
+    prog.feedback.set(ctx.config.indirect && ctx.historyValid);
+    prog.damping.set(s.damping);
+    ctx.bindSamplers(prog);
     const int layers = ctx.config.layer2 ? 2 : 1;  // no layer-2 work when layer 2 is off
     for (int layer = 0; layer < layers; ++layer) {
-        setUniform(prog, "uLayer", layer);
+        prog.layer.set(layer);
         GLuint fbo = ctx.fbos.get({{GL_COLOR_ATTACHMENT0, radiance, 0, layer}}, "input radiance");
-        ctx.drawFullscreen(prog, fbo, ctx.width, ctx.height);
+        ctx.drawFullscreen(prog.id(), fbo, ctx.width, ctx.height);
     }
     if (!ctx.config.indirect) return;
 
     // Mip chains for the gather. Reading level k-1 while writing level k of the same texture: restrict the
     // sampled range to level k-1 (base = max = k-1) so there is no feedback loop.
-    const GLuint depth = ctx.textures.id("Depth"), normal = ctx.textures.id("Normal");
-    const int levels = std::min({ctx.textures.entry("Depth").decl.levels, ctx.textures.entry("Normal").decl.levels,
-                                 ctx.textures.entry("Input Radiance").decl.levels});
-    GLuint mipProg = ctx.shaders.get({"fullscreen.vert", "", "gather_mips.frag", "", {}});
-    setUniform(mipProg, "uSrcLevel", 0);
-    glBindTextureUnit(4, depth);
-    glBindTextureUnit(8, normal);
-    glBindTextureUnit(11, radiance);
+    const GLuint depth = ctx.texture("Depth"), normal = ctx.texture("Normal");
+    const int levels = std::min({ctx.entry("Depth").decl.levels, ctx.entry("Normal").decl.levels,
+                                 ctx.entry("Input Radiance").decl.levels});
+    MipProgram& mipProg = mips_.get(ctx.shaders, {"fullscreen.vert", "", "gather_mips.frag", "", {}});
+    mipProg.srcLevel.set(0);
+    ctx.bindSamplers(mipProg);
     glEnable(GL_DEPTH_TEST);
     glDepthFunc(GL_ALWAYS);
     glDepthMask(GL_TRUE);
@@ -55,13 +64,13 @@ void InputRadiancePass::execute(FrameContext& ctx) {
         }
         const int w = std::max(1, ctx.width >> level), h = std::max(1, ctx.height >> level);
         for (int layer = 0; layer < layers; ++layer) {
-            setUniform(mipProg, "uLayer", layer);
+            mipProg.layer.set(layer);
             GLuint fbo = ctx.fbos.get({{GL_DEPTH_ATTACHMENT, depth, level, layer},
                                        {GL_COLOR_ATTACHMENT0, normal, level, layer},
                                        {GL_COLOR_ATTACHMENT1, radiance, level, layer}}, "gather mips");
             glBindFramebuffer(GL_FRAMEBUFFER, fbo);
             glViewport(0, 0, w, h);
-            glUseProgram(mipProg);
+            glUseProgram(mipProg.id());
             glBindVertexArray(ctx.fullscreenVao);
             glDrawArrays(GL_TRIANGLES, 0, 3);
         }

@@ -8,11 +8,26 @@ namespace deepgi {
 class InputRadiancePass final : public RenderPass {
 public:
     const char* name() const override { return "Input radiance"; }
-    void declare(const PipelineConfig& c, std::vector<TextureDecl>& out) const override;
-    std::vector<std::string> reads() const override { return {"Depth", "Albedo", "Normal", "Emission", "Reprojected Radiance", "Shadow Maps", "Shadow Cubes"}; }
-    std::vector<std::string> writes() const override { return {"Input Radiance", "Depth mips", "Normal mips", "Input Radiance mips"}; }
+    void table(const PipelineConfig& c, PassTable& t) const override;
     bool enabled(const PipelineConfig& c) const override { return c.indirect || c.seedComposite; }
     void execute(FrameContext& ctx) override;
+
+private:
+    struct RadianceProgram : gl::Program {
+        using gl::Program::Program;
+        LightingUniforms lighting{*this};
+        gl::Uniform<int> layer{*this, "uLayer"};
+        gl::Uniform<bool> hasEmission{*this, "uHasEmission"};
+        gl::Uniform<bool> feedback{*this, "uFeedback"};
+        gl::Uniform<float> damping{*this, "uDamping"};
+    };
+    struct MipProgram : gl::Program {
+        using gl::Program::Program;
+        gl::Uniform<int> layer{*this, "uLayer"};
+        gl::Uniform<int> srcLevel{*this, "uSrcLevel"};
+    };
+    gl::ProgramSlot<RadianceProgram> radiance_;
+    gl::ProgramSlot<MipProgram> mips_;
 };
 
 }  // namespace deepgi

@@ -1,6 +1,7 @@
 #include "renderer/passes/pass.h"
 
-#include <glm/gtc/type_ptr.hpp>
+#include <algorithm>
+#include <stdexcept>
 
 #include <algorithm>
 
@@ -12,6 +13,48 @@ bool PipelineConfig::operator==(const PipelineConfig& o) const {
            probes == o.probes && std::equal(probeIrradianceSize, probeIrradianceSize + 2, o.probeIrradianceSize) &&
            std::equal(probeDepthSize, probeDepthSize + 2, o.probeDepthSize) && std::equal(probeDataSize, probeDataSize + 2, o.probeDataSize) &&
            shadowMapLayers == o.shadowMapLayers && shadowCubeLayers == o.shadowCubeLayers;
+}
+
+const char* accessName(Access a) {
+    switch (a) {
+    case Access::Read: return "reads";
+    case Access::History: return "reads last frame's";
+    case Access::Write: return "writes";
+    case Access::Update: return "updates";
+    case Access::Scratch: return "scratch";
+    }
+    return "?";
+}
+
+Channel& PassTable::add(const std::string& texture, Access a, const std::string& sampler) {
+    Channel c;
+    c.texture = texture;
+    c.access = a;
+    c.sampler = sampler;
+    channels_.push_back(std::move(c));
+    return channels_.back();
+}
+
+Channel& PassTable::write(const TextureDecl& decl, const std::string& sampler) {
+    Channel& c = add(decl.name, Access::Write, sampler);
+    c.decl = decl;
+    return c;
+}
+
+Channel& PassTable::scratch(const TextureDecl& decl, const std::string& sampler) {
+    Channel& c = add(decl.name, Access::Scratch, sampler);
+    c.decl = decl;
+    c.decl->group = MemoryGroup::Scratch;
+    return c;
+}
+
+bool PassTable::uses(const std::string& texture) const {
+    return std::any_of(channels_.begin(), channels_.end(), [&](const Channel& c) { return c.texture == texture; });
+}
+
+void readShadowMaps(PassTable& t) {
+    t.read("Shadow Maps", "uShadowMaps").optional();
+    t.read("Shadow Cubes", "uShadowCubes").optional();
 }
 
 GLuint FramebufferCache::get(const std::vector<Attachment>& atts, const std::string& label) {
@@ -34,6 +77,41 @@ GLuint FramebufferCache::get(const std::vector<Attachment>& atts, const std::str
     return id;
 }
 
+static std::string passName(const FrameContext& ctx);
+
+GLuint FrameContext::texture(const std::string& name) const { return entry(name).texture.id(); }
+
+const TextureRegistry::Entry& FrameContext::entry(const std::string& name) const {
+    if (table && !table->uses(name))
+        throw std::runtime_error("pass '" + passName(*this) + "' uses texture '" + name +
+                                 "', which its table does not declare (add it to " + passName(*this) + "::table)");
+    return textures.entry(name);
+}
+
+void FrameContext::bindSamplers(const gl::Program& program,
+                                std::initializer_list<std::pair<const char*, const char*>> overrides) const {
+    std::optional<gl::LenientProgramChecks> lenient;
+    if (program.reloaded()) lenient.emplace();
+    for (const std::string& sampler : program.activeSamplers()) {
+        const char* texture = nullptr;
+        for (const auto& [s, t] : overrides)
+            if (sampler == s) texture = t;
+        const TextureBinding* found = nullptr;
+        if (bindings)
+            for (const auto& b : *bindings)
+                if (texture ? b.texture == texture : b.sampler == sampler) { found = &b; break; }
+        if (!found) {
+            gl::programMistake("pass '" + passName(*this) + "': program '" + program.name() + "' samples '" + sampler +
+                               (texture ? "' from '" + std::string(texture) + "', which has no sampler entry in the pass's table"
+                                        : "', which the pass's table does not declare (an undeclared read)"));
+            continue;
+        }
+        program.setSampler(sampler, found->unit);
+    }
+}
+
+static std::string passName(const FrameContext& ctx) { return ctx.pass ? ctx.pass->name() : "?"; }
+
 void FrameContext::drawFullscreen(GLuint program, GLuint fbo, int w, int h) const {
     glBindFramebuffer(GL_FRAMEBUFFER, fbo);
     glViewport(0, 0, w, h);
@@ -45,19 +123,11 @@ void FrameContext::drawFullscreen(GLuint program, GLuint fbo, int w, int h) cons
     glDrawArrays(GL_TRIANGLES, 0, 3);
 }
 
-void FrameContext::setLightUniforms(GLuint program) const {
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, lightBuffer);
-    setUniform(program, "uLightCount", lightCount);
-    setUniform(program, "uShadowBias", settings.shadowBias);
-    glBindTextureUnit(14, textures.has("Shadow Maps") ? textures.id("Shadow Maps") : 0);
-    glBindTextureUnit(15, textures.has("Shadow Cubes") ? textures.id("Shadow Cubes") : 0);
+void LightingUniforms::set(const FrameContext& ctx) const {
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, ctx.lightBuffer);
+    count.set(ctx.lightCount);
+    const LightSettings& light = ctx.settings;
+    shadowBias.set(light.shadowBias);
 }
-
-void setUniform(GLuint p, const char* n, int v) { glProgramUniform1i(p, glGetUniformLocation(p, n), v); }
-void setUniform(GLuint p, const char* n, float v) { glProgramUniform1f(p, glGetUniformLocation(p, n), v); }
-void setUniform(GLuint p, const char* n, const glm::vec2& v) { glProgramUniform2fv(p, glGetUniformLocation(p, n), 1, glm::value_ptr(v)); }
-void setUniform(GLuint p, const char* n, const glm::ivec2& v) { glProgramUniform2iv(p, glGetUniformLocation(p, n), 1, glm::value_ptr(v)); }
-void setUniform(GLuint p, const char* n, const glm::vec3& v) { glProgramUniform3fv(p, glGetUniformLocation(p, n), 1, glm::value_ptr(v)); }
-void setUniform(GLuint p, const char* n, const glm::mat4& v) { glProgramUniformMatrix4fv(p, glGetUniformLocation(p, n), 1, GL_FALSE, glm::value_ptr(v)); }
 
 }  // namespace deepgi

@@ -1,15 +1,20 @@
 #pragma once
-// A render pass: one class, one shader file. It declares the textures it owns and names those it reads/writes.
+// A render pass: one class, one shader file. Its table (table()) is the single statement of every texture it reads
+// and writes; the renderer allocates, binds, orders and checks the pipeline from the tables alone (pass_graph.h).
 #include "renderer/core/settings.h"
 #include "renderer/core/texture_registry.h"
 #include "renderer/gl/gl.h"
+#include "renderer/gl/program.h"
 #include "renderer/gl/shader_library.h"
 #include "renderer/scene/scene.h"
 #include "renderer/scene/scene_gpu.h"
 
 #include <glm/glm.hpp>
+#include <initializer_list>
 #include <map>
+#include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace deepgi {
@@ -33,6 +38,59 @@ struct PipelineConfig {
     int shadowCubeLayers = 0;  // point lights
     bool operator==(const PipelineConfig& o) const;
 };
+
+// ---- The pass table ---------------------------------------------------------------------------------------
+
+enum class Access {
+    Read,     // this frame's content, written by an earlier pass
+    History,  // last frame's content: this pass runs before this frame's writers of the texture
+    Write,    // creates this frame's content; the pass allocates the texture (one writer per texture and frame)
+    Update,   // read-modify-write in place after the writer (mip levels from level 0, a filter); several updates
+              // of one texture are ordered with after()
+    Scratch,  // content lives only inside this pass; passes that all declare it scratch may share it
+};
+// Which mip levels a channel touches: reads depend only on writers of the levels they read.
+enum class Levels { Base, Mips, All };
+
+const char* accessName(Access a);
+
+struct Channel {
+    std::string texture;             // registry name ("Depth")
+    Access access = Access::Read;
+    Levels levels = Levels::All;
+    std::string sampler;             // GLSL sampler uniform that reads it ("" = attached as a target or copied only)
+    bool isOptional = false;         // Read/History: the pass works without it (not written this frame, or absent)
+    std::string afterPass;           // Update: applied after that pass's update of the same texture, if it runs
+    std::optional<TextureDecl> decl; // Write/Scratch: the texture's declaration (this pass allocates it)
+
+    Channel& optional(bool yes = true) { isOptional = yes; return *this; }
+    Channel& after(const std::string& pass) { afterPass = pass; return *this; }
+    Channel& level(Levels l) { levels = l; return *this; }
+};
+
+class PassTable {
+public:
+    Channel& read(const std::string& texture, const std::string& sampler = "") { return add(texture, Access::Read, sampler); }
+    Channel& history(const std::string& texture, const std::string& sampler = "") { return add(texture, Access::History, sampler); }
+    Channel& update(const std::string& texture, const std::string& sampler = "") { return add(texture, Access::Update, sampler); }
+    Channel& write(const TextureDecl& decl, const std::string& sampler = "");
+    Channel& scratch(const TextureDecl& decl, const std::string& sampler = "");
+    const std::vector<Channel>& channels() const { return channels_; }
+    bool uses(const std::string& texture) const;
+
+private:
+    Channel& add(const std::string& texture, Access a, const std::string& sampler);
+    std::vector<Channel> channels_;
+};
+
+// A texture unit the renderer assigned to one channel of a pass.
+struct TextureBinding {
+    std::string texture, sampler;
+    int unit;
+    GLuint id;  // 0 when an optional texture is absent
+};
+
+// ---- What a pass sees while it runs -----------------------------------------------------------------------
 
 // Framebuffers keyed by their attachments; cleared whenever the registry re-creates textures.
 class FramebufferCache {
@@ -59,8 +117,10 @@ struct ShadowCaster {
     float far;
 };
 
+class RenderPass;
+
 struct FrameContext {
-    const Settings& settings;
+    const Settings& settings;  // passes read their stage's group: `const BlurSettings& b = ctx.settings;`
     const PipelineConfig& config;
     TextureRegistry& textures;
     gl::ShaderLibrary& shaders;
@@ -76,31 +136,42 @@ struct FrameContext {
     float time;          // seconds of animation for temporally varying taps
     ProbeVolume* probes; // the world-space fallback (null when config.probes is false)
     GLuint probeUniforms;  // its uniform block (probe_volume.glsl), bound at 2
+    // Set by the renderer for the pass that runs.
+    const RenderPass* pass = nullptr;
+    const PassTable* table = nullptr;
+    const std::vector<TextureBinding>* bindings = nullptr;
 
+    // A texture of the running pass's table; any other name is an error naming the pass (an undeclared use).
+    GLuint texture(const std::string& name) const;
+    const TextureRegistry::Entry& entry(const std::string& name) const;
+    // Sets every sampler the program uses to the unit of its table entry; `overrides` point a sampler at another
+    // texture of the table for the next draw ({"uSource", "Radiosity Scratch"}). A sampler the table does not
+    // declare is an error (an undeclared read).
+    void bindSamplers(const gl::Program& program,
+                      std::initializer_list<std::pair<const char*, const char*>> overrides = {}) const;
     // Draws a full-screen triangle into fbo with a viewport of w x h.
     void drawFullscreen(GLuint program, GLuint fbo, int w, int h) const;
-    // Uniforms of lighting.glsl.
-    void setLightUniforms(GLuint program) const;
 };
+
+// Uniforms of lighting.glsl (its shadow samplers come from the table: "Shadow Maps", "Shadow Cubes").
+struct LightingUniforms {
+    explicit LightingUniforms(gl::Program& p) : count(p, "uLightCount"), shadowBias(p, "uShadowBias") {}
+    void set(const FrameContext& ctx) const;  // also binds the light buffer
+    gl::Uniform<int> count;
+    gl::Uniform<float> shadowBias;
+};
+
+// The optional shadow-map reads of a pass that includes lighting.glsl.
+void readShadowMaps(PassTable& t);
 
 class RenderPass {
 public:
     virtual ~RenderPass() = default;
     virtual const char* name() const = 0;
-    // Textures this pass allocates (it is their single declaration).
-    virtual void declare(const PipelineConfig&, std::vector<TextureDecl>&) const {}
-    virtual std::vector<std::string> reads() const = 0;
-    virtual std::vector<std::string> writes() const = 0;
+    // Every texture this pass reads and writes in a pipeline of config c (its single declaration).
+    virtual void table(const PipelineConfig& c, PassTable& t) const = 0;
     virtual bool enabled(const PipelineConfig&) const { return true; }
     virtual void execute(FrameContext& ctx) = 0;
 };
-
-// Uniform helpers (location looked up by name; -1 is ignored by GL).
-void setUniform(GLuint program, const char* name, int v);
-void setUniform(GLuint program, const char* name, float v);
-void setUniform(GLuint program, const char* name, const glm::vec2& v);
-void setUniform(GLuint program, const char* name, const glm::ivec2& v);
-void setUniform(GLuint program, const char* name, const glm::vec3& v);
-void setUniform(GLuint program, const char* name, const glm::mat4& v);
 
 }  // namespace deepgi

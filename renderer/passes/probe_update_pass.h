@@ -10,9 +10,7 @@ namespace deepgi {
 class ProbeUpdatePass final : public RenderPass {
 public:
     const char* name() const override { return "Probe update"; }
-    void declare(const PipelineConfig& c, std::vector<TextureDecl>& out) const override;
-    std::vector<std::string> reads() const override { return {}; }
-    std::vector<std::string> writes() const override { return {"Probe Irradiance", "Probe Depth", "Probe Data"}; }
+    void table(const PipelineConfig& c, PassTable& t) const override;
     bool enabled(const PipelineConfig& c) const override { return c.probes; }
     void execute(FrameContext& ctx) override;
 
@@ -21,7 +19,9 @@ private:
     const ProbeVolume* uploadedVolume_ = nullptr;
 };
 
-// Binds the probe textures and uniform block where probe_volume.glsl expects them (units 2, 3, 5; block 2).
-void bindProbeVolume(const FrameContext& ctx);
+// The probe textures a pass that includes probe_volume.glsl reads (samplers uProbeIrradiance, uProbeDepth,
+// uProbeData), and its uniform block (binding 2) bound for the next draw.
+void readProbeVolume(PassTable& t);
+void bindProbeUniforms(const FrameContext& ctx);
 
 }  // namespace deepgi

@@ -3,6 +3,8 @@
 #include "renderer/passes/probe_update_pass.h"
 
 #include <algorithm>
+#include <cmath>
+#include <numeric>
 
 namespace deepgi {
 
@@ -12,45 +14,55 @@ int spiralTurns(int n) {
                                     11, 11, 13, 12, 13, 19, 17, 13, 11, 18, 19, 11, 11, 14, 17, 21, 15, 16, 17, 18,
                                     13, 17, 11, 17, 19, 18, 25, 18, 19, 19, 29, 21, 19, 27, 31, 29, 21, 18, 17, 29,
                                     31, 31, 23, 18, 25, 26, 25, 23, 19, 34, 19, 27, 21, 25, 39, 29, 17, 21, 27, 29};
-    return (n >= 0 && n < 100) ? kTurns[n] : 5779;
+    if (n >= 0 && n < 100) return kTurns[n];
+    if (n <= 0) return 1;
+    // Beyond the table: the integer nearest N (2 - golden ratio) that is coprime with N, so consecutive taps are a
+    // golden angle apart (Vogel's spiral) and no two taps share a direction (G3D's 5779 lines taps up for N = 578).
+    int t = int(std::lround(double(n) * 0.38196601125));
+    while (std::gcd(t, n) != 1) ++t;
+    return t;
 }
 
-void RadiosityGatherPass::declare(const PipelineConfig&, std::vector<TextureDecl>& out) const {
-    out.push_back({"Output Radiance", {"Output Radiance"}, GL_R11F_G11F_B10F, GL_TEXTURE_2D, SizeRule::Screen, 1,
-                   MemoryGroup::Radiosity, Visualize::Radiance,
-                   "Indirect irradiance at layer 1: raw gather, then blurred and temporally blended in place"});
-    out.push_back({"Gather Coverage", {"Gather Coverage"}, GL_R8, GL_TEXTURE_2D, SizeRule::Screen, 1, MemoryGroup::Extra,
-                   Visualize::Color,
-                   "Share of the cosine-weighted hemisphere the screen's visible surfaces covered in the gather (1 = all light "
-                   "came from the screen; the rest has to come from elsewhere)"});
+void RadiosityGatherPass::table(const PipelineConfig& c, PassTable& t) const {
+    t.read("Depth", "uDepth");
+    t.read("Normal", "uNormal");
+    t.read("Input Radiance", "uRadiance");
+    if (c.probes) readProbeVolume(t);  // the part of the hemisphere the screen does not cover
+    t.write({"Output Radiance", {"Output Radiance"}, GL_R11F_G11F_B10F, GL_TEXTURE_2D, SizeRule::screen(), 1,
+             MemoryGroup::Radiosity, Visualize::Radiance,
+             "Indirect irradiance at layer 1: raw gather (the probes fill what the screen did not cover), then blurred "
+             "and temporally blended in place"});
+    t.write({"Gather Coverage", {"Gather Coverage"}, GL_R8, GL_TEXTURE_2D, SizeRule::screen(), 1, MemoryGroup::Extra,
+             Visualize::Color,
+             "Share of the cosine-weighted hemisphere that the screen's visible surfaces covered in the gather (1 = all "
+             "light came from the screen; the probes give the rest)"});
 }
 
 void RadiosityGatherPass::execute(FrameContext& ctx) {
-    const Settings& s = ctx.settings;
+    const RadiositySettings& s = ctx.settings;
     // Layer 2 off: a variant without the layer-2 code (llvmpipe runs a branch on a uniform anyway).
     std::vector<std::string> defines;
     if (!ctx.config.layer2) defines.push_back("DEEPGI_SINGLE_LAYER");
     if (ctx.config.probes) defines.push_back("DEEPGI_PROBES");
-    GLuint prog = ctx.shaders.get({"fullscreen.vert", "", "radiosity_gather.frag", "", defines});
-    const int levels = ctx.textures.entry("Input Radiance").decl.levels;
-    setUniform(prog, "uNumSamples", s.numSamples);
-    setUniform(prog, "uSpiralTurns", float(spiralTurns(s.numSamples)));
-    setUniform(prog, "uRadius", s.radius);
-    setUniform(prog, "uMaxMip", std::max(0, std::min(5, levels - 1)));
-    setUniform(prog, "uMinMip", std::min(s.minMip, std::max(0, std::min(5, levels - 1))));
-    setUniform(prog, "uLogMaxOffset", s.logMaxOffset);
-    setUniform(prog, "uTapNormalTest", s.tapNormalTest ? 1 : 0);
-    setUniform(prog, "uUseLayer2", ctx.config.layer2 ? 1 : 0);
-    setUniform(prog, "uTime", s.varyTaps ? ctx.time : 0.0f);
-    setUniform(prog, "uThickness", s.minSeparation);
-    setUniform(prog, "uVisibilitySteps", s.visibilitySteps);
-    if (ctx.config.probes) bindProbeVolume(ctx);
-    glBindTextureUnit(4, ctx.textures.id("Depth"));
-    glBindTextureUnit(8, ctx.textures.id("Normal"));
-    glBindTextureUnit(11, ctx.textures.id("Input Radiance"));
-    GLuint fbo = ctx.fbos.get({{GL_COLOR_ATTACHMENT0, ctx.textures.id("Output Radiance")},
-                               {GL_COLOR_ATTACHMENT1, ctx.textures.id("Gather Coverage")}}, "output radiance");
-    ctx.drawFullscreen(prog, fbo, ctx.width, ctx.height);
+    Program& prog = program_.get(ctx.shaders, {"fullscreen.vert", "", "radiosity_gather.frag", "", defines});
+    const int levels = ctx.entry("Input Radiance").decl.levels;
+    const int maxMip = std::max(0, std::min(5, levels - 1));
+    prog.numSamples.set(s.numSamples);
+    prog.spiralTurns.set(float(spiralTurns(s.numSamples)));
+    prog.radius.set(s.radius);
+    prog.maxMip.set(maxMip);
+    prog.minMip.set(std::min(s.minMip, maxMip));
+    prog.logMaxOffset.set(s.logMaxOffset);
+    prog.tapNormalTest.set(s.tapNormalTest);
+    prog.useLayer2.set(ctx.config.layer2);
+    prog.time.set(s.varyTaps ? ctx.time : 0.0f);
+    prog.thickness.set(ctx.settings.minSeparation);
+    prog.visibilitySteps.set(s.visibilitySteps);
+    if (ctx.config.probes) bindProbeUniforms(ctx);
+    ctx.bindSamplers(prog);
+    GLuint fbo = ctx.fbos.get({{GL_COLOR_ATTACHMENT0, ctx.texture("Output Radiance")},
+                               {GL_COLOR_ATTACHMENT1, ctx.texture("Gather Coverage")}}, "output radiance");
+    ctx.drawFullscreen(prog.id(), fbo, ctx.width, ctx.height);
 }
 
 }  // namespace deepgi

@@ -7,14 +7,29 @@ namespace deepgi {
 class ReprojectRadiancePass final : public RenderPass {
 public:
     const char* name() const override { return "Reproject radiance"; }
-    void declare(const PipelineConfig& c, std::vector<TextureDecl>& out) const override;
-    std::vector<std::string> reads() const override { return {"Depth", "Last Depth", "Output Radiance", "Temporal History"}; }
-    std::vector<std::string> writes() const override { return {"Reprojected Radiance"}; }
+    void table(const PipelineConfig& c, PassTable& t) const override;
     bool enabled(const PipelineConfig& c) const override { return c.indirect; }
     void execute(FrameContext& ctx) override;
+
+private:
+    struct Program;
+    gl::ProgramSlot<Program> program_;
 };
 
-// Shared by the reprojection and the temporal blend (reprojection.glsl).
-void setReprojectionUniforms(FrameContext& ctx, GLuint program);
+// Uniforms of reprojection.glsl, shared by the reprojection and the temporal blend.
+struct ReprojectionUniforms {
+    explicit ReprojectionUniforms(gl::Program& p)
+        : falloffStart(p, "uFalloffStart"), falloffEnd(p, "uFalloffEnd"), historyValid(p, "uHistoryValid") {}
+    void set(const FrameContext& ctx) const;
+    gl::Uniform<float> falloffStart, falloffEnd;
+    gl::Uniform<bool> historyValid;
+};
+// The textures reprojection.glsl samples: this frame's layer-1 depth and last frame's (Last Depth).
+void readReprojectionInputs(PassTable& t);
+
+struct ReprojectRadiancePass::Program : gl::Program {
+    using gl::Program::Program;
+    ReprojectionUniforms reprojection{*this};
+};
 
 }  // namespace deepgi

@@ -2,18 +2,18 @@
 
 namespace deepgi {
 
-void ShadowMapPass::declare(const PipelineConfig& c, std::vector<TextureDecl>& out) const {
+void ShadowMapPass::table(const PipelineConfig& c, PassTable& t) const {
     if (c.shadowMapLayers > 0) {
-        TextureDecl d{"Shadow Maps", {}, GL_DEPTH_COMPONENT32F, GL_TEXTURE_2D_ARRAY, SizeRule::ShadowMap, 1,
+        TextureDecl d{"Shadow Maps", {}, GL_DEPTH_COMPONENT32F, GL_TEXTURE_2D_ARRAY, SizeRule::shadowMap(), 1,
                       MemoryGroup::Extra, Visualize::ShadowDepth, "Depth from each directional and spot light"};
         for (int i = 0; i < c.shadowMapLayers; ++i) d.layerNames.push_back("Shadow Map " + std::to_string(i + 1));
-        out.push_back(d);
+        t.write(d);
     }
     if (c.shadowCubeLayers > 0) {
-        TextureDecl d{"Shadow Cubes", {}, GL_DEPTH_COMPONENT32F, GL_TEXTURE_CUBE_MAP_ARRAY, SizeRule::ShadowMap, 1,
+        TextureDecl d{"Shadow Cubes", {}, GL_DEPTH_COMPONENT32F, GL_TEXTURE_CUBE_MAP_ARRAY, SizeRule::shadowMap(), 1,
                       MemoryGroup::Extra, Visualize::ShadowDepth, "Distance to each point light / far, 6 faces per light"};
         for (int i = 0; i < c.shadowCubeLayers; ++i) d.layerNames.push_back("Shadow Cube " + std::to_string(i + 1));
-        out.push_back(d);
+        t.write(d);
     }
 }
 
@@ -22,8 +22,8 @@ void ShadowMapPass::execute(FrameContext& ctx) {
     renderedKey_ = ctx.shadowKey;
     renderedGeneration_ = ctx.textures.generation();
     for (const char* texName : {"Shadow Maps", "Shadow Cubes"}) {
-        if (!ctx.textures.has(texName)) continue;
-        GLuint t = ctx.textures.id(texName);
+        if (!ctx.table->uses(texName)) continue;
+        GLuint t = ctx.texture(texName);
         glTextureParameteri(t, GL_TEXTURE_COMPARE_MODE, GL_COMPARE_REF_TO_TEXTURE);
         glTextureParameteri(t, GL_TEXTURE_COMPARE_FUNC, GL_LEQUAL);
     }
@@ -32,7 +32,7 @@ void ShadowMapPass::execute(FrameContext& ctx) {
     glDepthMask(GL_TRUE);
     for (const auto& caster : ctx.shadowCasters) {
         const char* texName = caster.cube ? "Shadow Cubes" : "Shadow Maps";
-        const auto& e = ctx.textures.entry(texName);
+        const auto& e = ctx.entry(texName);
         GLuint fbo = ctx.fbos.get({{GL_DEPTH_ATTACHMENT, e.texture.id(), 0, caster.layer}}, texName);
         glBindFramebuffer(GL_FRAMEBUFFER, fbo);
         glViewport(0, 0, e.width, e.height);
@@ -44,12 +44,13 @@ void ShadowMapPass::execute(FrameContext& ctx) {
             std::vector<std::string> defs;
             if (masked) defs.push_back("MASKED");
             if (caster.cube) defs.push_back("CUBE");
-            GLuint prog = ctx.shaders.get({"shadow_map.vert", "", "shadow_map.frag", "", defs});
-            glUseProgram(prog);
-            setUniform(prog, "uLightViewProj", caster.viewProj);
-            setUniform(prog, "uLightPos", caster.position);
-            setUniform(prog, "uShadowFar", caster.far);
-            ctx.scene.draw(prog, masked, false);
+            Program& prog = program_.get(ctx.shaders, {"shadow_map.vert", "", "shadow_map.frag", "", defs});
+            glUseProgram(prog.id());
+            prog.lightViewProj.set(caster.viewProj);
+            prog.lightPos.set(caster.position);
+            prog.shadowFar.set(caster.far);
+            ctx.bindSamplers(prog);
+            ctx.scene.draw(prog.id(), masked, false);
         }
     }
 }

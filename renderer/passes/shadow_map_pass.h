@@ -8,13 +8,18 @@ namespace deepgi {
 class ShadowMapPass final : public RenderPass {
 public:
     const char* name() const override { return "Shadow maps"; }
-    void declare(const PipelineConfig& c, std::vector<TextureDecl>& out) const override;
-    std::vector<std::string> reads() const override { return {}; }
-    std::vector<std::string> writes() const override { return {"Shadow Maps", "Shadow Cubes"}; }
+    void table(const PipelineConfig& c, PassTable& t) const override;
     bool enabled(const PipelineConfig& c) const override { return c.shadowMapLayers + c.shadowCubeLayers > 0; }
     void execute(FrameContext& ctx) override;
 
 private:
+    struct Program : gl::Program {
+        Program(GLuint id, std::string name) : gl::Program(id, std::move(name)) { externalSampler("uBaseTex"); externalSampler("uEmissiveTex"); }
+        gl::Uniform<glm::mat4> lightViewProj{*this, "uLightViewProj"};
+        gl::OptionalUniform<glm::vec3> lightPos{*this, "uLightPos"};     // CUBE variant only
+        gl::OptionalUniform<float> shadowFar{*this, "uShadowFar"};       // CUBE variant only
+    };
+    gl::ProgramSlot<Program> program_;
     uint64_t renderedKey_ = 0;
     uint64_t renderedGeneration_ = 0;
 };

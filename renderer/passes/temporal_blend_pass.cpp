@@ -1,22 +1,34 @@
 #include "renderer/passes/temporal_blend_pass.h"
 
-#include "renderer/passes/bilateral_blur_pass.h"
-#include "renderer/passes/reproject_radiance_pass.h"
-
 namespace deepgi {
 
+TextureDecl radiosityScratch() {
+    return {"Radiosity Scratch", {"Radiosity Scratch"}, GL_R11F_G11F_B10F, GL_TEXTURE_2D, SizeRule::screen(), 1,
+            MemoryGroup::Scratch, Visualize::Radiance,
+            "Scratch of the blur (horizontal result) and the temporal blend (blended result before the copy back)"};
+}
+
+void TemporalBlendPass::table(const PipelineConfig& c, PassTable& t) const {
+    readReprojectionInputs(t);
+    t.read("Reprojected Radiance", "uReprojected");
+    t.update("Output Radiance", "uCurrent").after(c.temporalFirst ? "" : "Bilateral blur");
+    t.scratch(radiosityScratch());
+    if (c.temporalFirst)
+        t.write({"Temporal History", {"Temporal History"}, GL_R11F_G11F_B10F, GL_TEXTURE_2D, SizeRule::screen(), 1,
+                 MemoryGroup::Extra, Visualize::Radiance, "Temporally filtered, unblurred irradiance (temporal_first order only)"});
+}
+
 void TemporalBlendPass::execute(FrameContext& ctx) {
-    const GLuint scratch = scratchView(ctx, scratchView_, viewOf_, viewGeneration_);
-    const GLuint output = ctx.textures.id("Output Radiance");
-    GLuint prog = ctx.shaders.get({"fullscreen.vert", "", "temporal_blend.frag", "", {}});
-    setReprojectionUniforms(ctx, prog);
-    setUniform(prog, "uAlpha", ctx.settings.hysteresis);
-    glBindTextureUnit(12, output);
-    glBindTextureUnit(10, ctx.textures.id("Reprojected Radiance"));
-    ctx.drawFullscreen(prog, ctx.fbos.get({{GL_COLOR_ATTACHMENT0, scratch}}, "blur scratch"), ctx.width, ctx.height);
+    const TemporalSettings& s = ctx.settings;
+    const GLuint scratch = ctx.texture("Radiosity Scratch"), output = ctx.texture("Output Radiance");
+    Program& prog = program_.get(ctx.shaders, {"fullscreen.vert", "", "temporal_blend.frag", "", {}});
+    prog.reprojection.set(ctx);
+    prog.alpha.set(s.hysteresis);
+    ctx.bindSamplers(prog);
+    ctx.drawFullscreen(prog.id(), ctx.fbos.get({{GL_COLOR_ATTACHMENT0, scratch}}, "radiosity scratch"), ctx.width, ctx.height);
     glCopyImageSubData(scratch, GL_TEXTURE_2D, 0, 0, 0, 0, output, GL_TEXTURE_2D, 0, 0, 0, 0, ctx.width, ctx.height, 1);
     if (ctx.config.temporalFirst)
-        glCopyImageSubData(scratch, GL_TEXTURE_2D, 0, 0, 0, 0, ctx.textures.id("Temporal History"), GL_TEXTURE_2D, 0, 0,
+        glCopyImageSubData(scratch, GL_TEXTURE_2D, 0, 0, 0, 0, ctx.texture("Temporal History"), GL_TEXTURE_2D, 0, 0,
                            0, 0, ctx.width, ctx.height, 1);
 }
 
