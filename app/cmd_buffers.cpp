@@ -21,7 +21,7 @@ CommandRegistrar registrar("buffers", "List every texture the renderer allocates
         int w = 0, h = 0;
         parseSize(*size, w, h);
         const Settings s = settings->build();
-        auto scene = std::make_shared<Scene>(loadGltf(scenePath->empty() ? defaultScenePath() : *scenePath));
+        auto scene = std::make_shared<Scene>(loadGltf(scenePath->empty() ? defaultScenePath() : *scenePath, gltfLoadOptions(s)));
         gl::HeadlessContext context;
         Renderer renderer;
         renderer.setScene(scene);
@@ -37,6 +37,8 @@ CommandRegistrar registrar("buffers", "List every texture the renderer allocates
         std::printf("extra:     %d bits per pixel (screen-sized) + mips and shadow maps, %llu bytes\n", r.extraBitsPerPixel,
                     (unsigned long long)r.extraBytes);
         std::printf("total:     %llu bytes (%.1f MiB)\n", (unsigned long long)r.totalBytes, r.totalBytes / 1048576.0);
+        std::printf("scene load peak: %llu bytes (%.1f MiB) of a load.memory_budget of %d MiB\n",
+                    (unsigned long long)scene->loadPeakBytes, scene->loadPeakBytes / 1048576.0, s.loadMemoryBudget);
         return 0;
     };
 });
