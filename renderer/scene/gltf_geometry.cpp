@@ -124,7 +124,7 @@ const tinygltf::Accessor& GltfReader::accessor(int index, const std::string& wha
 void GltfReader::reserveElements(size_t count, const std::string& what) {
     if (count > opt_.maxElements || elements_ + count > opt_.maxElements)
         fail(what + ": element count " + std::to_string(count) + " overflows the limit of " +
-             std::to_string(opt_.maxElements) + " vertices + indices per file");
+             std::to_string(opt_.maxElements) + " vertices + indices per file, every mesh instance counted");
     elements_ += count;
 }
 
