@@ -93,6 +93,9 @@ TEST(Settings, OutOfRangeIsAnErrorNamingKeyValueAndRange) {
     const auto warnings = applySettingsJsonLeniently(
         v, nlohmann::json{{"temporal.alpha", 1.0}, {"radiosity.samples", 20}, {"no.such", 1}}, "state.json");
     ASSERT_EQ(warnings.size(), 2u);
+    Settings text;  // a number given as a string is range-checked the same way
+    EXPECT_EQ(applySettingsJsonLeniently(text, nlohmann::json{{"radiosity.samples", "1000"}}, "s").size(), 1u);
+    EXPECT_EQ(text.numSamples, 99);
     EXPECT_FLOAT_EQ(v.hysteresis, 0.995f);
     EXPECT_EQ(v.numSamples, 20);
     EXPECT_NE(warnings[0].find("no.such"), std::string::npos) << warnings[0];

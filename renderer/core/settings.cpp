@@ -185,7 +185,9 @@ std::vector<std::string> applySettingsJsonLeniently(Settings& s, const nlohmann:
             applyJsonValue(s, it.key(), it.value());
         } catch (const OutOfRange& e) {
             const SettingInfo* info = findSetting(it.key());
-            const double clamped = std::min(std::max(it.value().get<double>(), info->min), info->max);
+            const double given = it.value().is_number() ? it.value().get<double>()
+                                                        : std::stod(it.value().get<std::string>());  // parsed before
+            const double clamped = std::min(std::max(given, info->min), info->max);
             info->set(s, clamped);
             warnings.push_back(where + ": " + e.what() + "; using " + formatSettingValue(*info, clamped));
         } catch (const std::exception& e) {
