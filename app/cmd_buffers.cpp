@@ -21,7 +21,7 @@ CommandRegistrar registrar("buffers", "List every texture the renderer allocates
         int w = 0, h = 0;
         parseSize(*size, w, h);
         const Settings s = settings->build();
-        auto scene = std::make_shared<Scene>(loadGltf(scenePath->empty() ? defaultScenePath() : *scenePath));
+        auto scene = std::make_shared<Scene>(loadGltf(scenePath->empty() ? defaultScenePath() : *scenePath, gltfLoadOptions(s)));
         gl::HeadlessContext context;
         Renderer renderer;
         renderer.setScene(scene);
@@ -39,6 +39,8 @@ CommandRegistrar registrar("buffers", "List every texture the renderer allocates
         std::printf("scratch:   %d bits per pixel (content lives inside one pass: the blur's and temporal blend's ping-pong), %llu bytes\n",
                     r.scratchBitsPerPixel, (unsigned long long)r.scratchBytes);
         std::printf("total:     %llu bytes (%.1f MiB)\n", (unsigned long long)r.totalBytes, r.totalBytes / 1048576.0);
+        std::printf("scene load peak: %llu bytes (%.1f MiB) of a load.memory_budget of %d MiB\n",
+                    (unsigned long long)scene->loadPeakBytes, scene->loadPeakBytes / 1048576.0, s.loadMemoryBudget);
         return 0;
     };
 });

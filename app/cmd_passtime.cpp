@@ -41,7 +41,7 @@ int runPassTime(const PassTimeArgs& a) {
     int w, h;
     parseSize(a.size, w, h);
     const Settings s = a.settings.build();
-    auto scene = std::make_shared<Scene>(loadGltf(a.scene.empty() ? defaultScenePath() : a.scene));
+    auto scene = std::make_shared<Scene>(loadGltf(a.scene.empty() ? defaultScenePath() : a.scene, gltfLoadOptions(s)));
     const Camera cam = selectCamera(*scene, a.scene.empty() ? a.camera : a.camera);
     gl::HeadlessContext context;
     std::vector<std::string> dirs = {a.shadersA, a.shadersB};

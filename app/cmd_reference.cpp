@@ -1,5 +1,6 @@
 // deepgi reference: the ground-truth image of a scene from the Embree path tracer.
 #include "app/command.h"
+#include "app/options.h"
 #include "renderer/core/camera.h"
 #include "renderer/core/image_io.h"
 #include "renderer/core/settings.h"
@@ -37,7 +38,7 @@ struct ReferenceArgs {
 
 int runReference(const ReferenceArgs& a) {
     ReferenceOptions opt;
-    std::tie(opt.width, opt.height) = parseImageSize(a.size);
+    parseSize(a.size, opt.width, opt.height);
     if (a.spp < 1) throw std::runtime_error("--spp must be at least 1, got " + std::to_string(a.spp));
     if (a.bounces < 0) throw std::runtime_error("--bounces must be 0 or more, got " + std::to_string(a.bounces));
     if (a.threads < 0) throw std::runtime_error("--threads must be 0 (all cores) or more, got " + std::to_string(a.threads));
@@ -51,7 +52,7 @@ int runReference(const ReferenceArgs& a) {
     if (!a.preset.empty()) applyPreset(settings, a.preset);
     for (const std::string& kv : a.assignments) applyAssignment(settings, kv);
 
-    Scene scene = loadGltf(a.scene);
+    Scene scene = loadGltf(a.scene, gltfLoadOptions(settings));
     if (!scene.bounds.valid()) scene.computeBounds();
     for (const std::string& w : scene.warnings) std::fprintf(stderr, "deepgi: warning: %s\n", w.c_str());
     const Camera camera = selectCamera(scene, a.camera);

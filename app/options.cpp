@@ -1,6 +1,8 @@
 #include "app/options.h"
 
-#include <regex>
+#include "renderer/reference/path_tracer.h"
+
+#include <tuple>
 #include <stdexcept>
 
 namespace deepgi {
@@ -22,12 +24,15 @@ Settings SettingsOptions::build() const {
 std::string defaultScenePath() { return std::string(DEEPGI_ASSET_DIR) + "/atrium/atrium.gltf"; }
 
 void parseSize(const std::string& text, int& w, int& h, bool allowZero) {
-    static const std::regex re(R"((\d{1,6})[xX](\d{1,6}))");
-    std::smatch m;
-    if (!std::regex_match(text, m, re)) throw std::runtime_error("--size expects WxH (e.g. 640x360), got '" + text + "'");
-    w = std::stoi(m[1]);
-    h = std::stoi(m[2]);
-    if (!allowZero && (w == 0 || h == 0)) throw std::runtime_error("--size " + text + ": width and height must be at least 1");
+    if (allowZero && (text == "0x0" || text == "0X0")) {
+        w = h = 0;
+        return;
+    }
+    try {
+        std::tie(w, h) = parseImageSize(text);  // the one WxH parser (render, reference, bench, view, buffers)
+    } catch (const std::runtime_error& e) {
+        throw std::runtime_error(std::string("--size: ") + e.what() + (allowZero ? " (or 0x0 for none)" : ""));
+    }
 }
 
 }  // namespace deepgi

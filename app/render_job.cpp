@@ -30,7 +30,7 @@ static std::string fileNameFor(const std::string& layer) {
 
 RenderJobResult runRenderJob(const RenderJob& job) {
     RenderJobResult result;
-    auto scene = std::make_shared<Scene>(loadGltf(job.scenePath));
+    auto scene = std::make_shared<Scene>(loadGltf(job.scenePath, gltfLoadOptions(job.settings)));
     result.warnings = scene->warnings;
     result.triangles = scene->triangleCount();
     Camera camera = selectCamera(*scene, job.camera);

@@ -173,7 +173,8 @@ void Viewer::loadState() {
         }
         if (!opt_.settingsGiven && j.contains("settings")) {
             Settings s;
-            applySettingsJson(s, j["settings"], path);
+            for (const auto& w : applySettingsJsonLeniently(s, j["settings"], path))
+                std::fprintf(stderr, "deepgi view: warning: %s\n", w.c_str());
             settings_ = s;
         }
         restoredScene_ = j.value("scene", std::string());

@@ -4,7 +4,11 @@
 // the deepgi binary make of a scene whose images are missing, corrupt, embedded or lying about their size.
 #include "gl_fixture.h"
 
+#include "renderer/core/camera.h"
+#include "renderer/reference/path_tracer.h"
 #include "renderer/scene/gltf_loader.h"
+#include "renderer/scene/lighting.h"
+#include "renderer/scene/scene_validation.h"
 
 #include <nlohmann/json.hpp>
 #include <stb_image_write.h>
@@ -12,6 +16,8 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <functional>
+#include <limits>
 #include <unistd.h>
 
 namespace fs = std::filesystem;
@@ -179,4 +185,124 @@ TEST_F(BadInput, CliRendersMissingImageWithAWarning) {
     EXPECT_NE(output.find("missing_texture.png"), std::string::npos) << output;
     EXPECT_NE(output.find("warning"), std::string::npos) << output;
     EXPECT_TRUE(fs::exists(dir / "out" / "final.png"));
+}
+
+// ---------------------------------------------------------------- renderer and path tracer agree (issue 11)
+namespace {
+ReferenceOptions tinyReference() {
+    ReferenceOptions o;
+    o.width = 16;
+    o.height = 16;
+    o.spp = 4;
+    o.maxBounces = 0;
+    o.threads = 1;
+    o.progress = false;
+    return o;
+}
+// Rewrites the quad scene's JSON through `edit`.
+fs::path editQuad(const fs::path& dir, const std::string& name, const std::function<void(json&)>& edit) {
+    const fs::path p = writeTexturedQuad(dir, name, "missing.png");
+    json j = json::parse(std::ifstream(p));
+    edit(j);
+    std::ofstream(p) << j.dump(1);
+    return p;
+}
+}  // namespace
+
+// crash: `reference` aborted inside Embree (ray.valid()) on a camera whose world transform is degenerate, while
+// `render` drew black. The shared validation skips such a camera with one warning: both render the scene through
+// the framing camera. A degenerate runtime Camera is an exception in the path tracer, never an abort.
+TEST_F(BadInput, DegenerateCameraNeitherAbortsNorDrawsBlack) {
+    for (const std::string& kind : {"scale0", "far"}) {
+        const fs::path p = editQuad(dir, kind + ".gltf", [&](json& j) {
+            if (kind == "scale0") j["nodes"][1]["scale"] = {0, 0, 0};
+            else j["nodes"][1]["translation"] = {1e38, 0, 0};
+        });
+        auto scene = std::make_shared<Scene>(loadGltf(p.string()));
+        EXPECT_TRUE(scene->cameras.empty()) << kind;
+        EXPECT_TRUE(hasWarning(*scene, "camera 'cam'", "skipped")) << kind;
+        auto renderer = rendererFor(scene, 16, 16, "");
+        for (int i = 0; i < 2; ++i) renderer->render(Settings{});
+        EXPECT_GT(meanChannel(renderer->readFinalRadiance(), 1), 0.0) << kind << ": renderer not black";
+        const ReferenceResult ref = renderReference(*scene, selectCamera(*scene, ""), Settings{}, tinyReference());
+        EXPECT_GT(meanChannel(ref.final, 1), 0.0) << kind << ": reference not black";
+    }
+    Scene scene = loadGltf(writeTexturedQuad(dir, "ok.gltf", "missing.png").string());
+    Camera zero = selectCamera(scene, "cam");
+    zero.cameraToWorld = glm::mat4(0.0f);
+    EXPECT_THROW(renderReference(scene, zero, Settings{}, tinyReference()), std::invalid_argument);
+    Camera far = selectCamera(scene, "cam");
+    far.cameraToWorld[3] = glm::vec4(1e38f, 0.0f, 0.0f, 1.0f);
+    EXPECT_THROW(renderReference(scene, far, Settings{}, tinyReference()), std::invalid_argument);
+}
+
+// silent wrong: znear beyond the geometry clipped it in `render` (black) while `reference` showed the scene; the
+// path tracer's camera rays now start at the near plane, so both show the background; with a near plane in front
+// of the quad both show it lit.
+TEST_F(BadInput, NearPlaneMeansTheSameInBothRenderers) {
+    for (double znear : {3.0, 0.1}) {  // the quad is 2 units in front of the camera
+        const fs::path p = editQuad(dir, "near.gltf", [&](json& j) { j["cameras"][0]["perspective"]["znear"] = znear; });
+        auto scene = std::make_shared<Scene>(loadGltf(p.string()));
+        auto renderer = rendererFor(scene, 16, 16, "cam");
+        for (int i = 0; i < 2; ++i) renderer->render(Settings{});
+        const double gl = meanChannel(renderer->readFinalRadiance(), 1, 4, 4, 12, 12);
+        const ReferenceResult ref = renderReference(*scene, selectCamera(*scene, "cam"), Settings{}, tinyReference());
+        const double pt = meanChannel(ref.final, 1, 4, 4, 12, 12);
+        if (znear > 2.0) {
+            EXPECT_EQ(gl, 0.0) << "renderer clips the quad";
+            EXPECT_EQ(pt, 0.0) << "reference clips the quad";
+        } else {
+            EXPECT_GT(gl, 0.0);
+            EXPECT_GT(pt, 0.0);
+            EXPECT_NEAR(pt, gl, 0.05 * gl) << "directly lit quad, no bounces";
+        }
+    }
+}
+
+// silent wrong: baseColorFactor above 1 was clamped by the renderer (RGBA8 albedo) but not by the path tracer. The
+// loader clamps it with a warning; a scene built in code is clamped by the path tracer's shading the same way.
+TEST_F(BadInput, BaseColorFactorAboveOneMeansOneInBothRenderers) {
+    const fs::path p = editQuad(dir, "bright.gltf", [](json& j) {
+        j["materials"][0]["pbrMetallicRoughness"]["baseColorFactor"] = {3.0, 3.0, 3.0, 1.0};
+    });
+    Scene loaded = loadGltf(p.string());
+    EXPECT_TRUE(hasWarning(loaded, "baseColorFactor", "clamped"));
+    EXPECT_FLOAT_EQ(loaded.materials[0].baseColorFactor.x, 1.0f);
+    Scene inCode = loaded;
+    inCode.materials[0].baseColorFactor = glm::vec4(3.0f, 3.0f, 3.0f, 1.0f);  // bypasses the loader
+    const Camera cam = selectCamera(loaded, "cam");
+    const ReferenceResult a = renderReference(loaded, cam, Settings{}, tinyReference());
+    const ReferenceResult b = renderReference(inCode, cam, Settings{}, tinyReference());
+    EXPECT_GT(meanChannel(a.final, 0), 0.0);
+    EXPECT_EQ(a.final.pixels, b.final.pixels);
+}
+
+// silent wrong: a spot light with inner cone > outer cone differed by 41 % between the renderers. Loader and
+// effectiveLights (which both renderers use) apply the same correction: the angles are swapped.
+TEST(SharedValidation, InvertedSpotConesAreSwappedForBothRenderers) {
+    Scene s;
+    Light spot;
+    spot.name = "spot";
+    spot.type = LightType::Spot;
+    spot.position = glm::vec3(0, 2, 0);
+    spot.direction = glm::vec3(0, -2, 0);  // not unit: normalised by the validation
+    spot.innerConeAngle = 0.7f;
+    spot.outerConeAngle = 0.3f;
+    s.lights.push_back(spot);
+    Light bad = spot;
+    bad.name = "nan";
+    bad.intensity = std::numeric_limits<float>::quiet_NaN();
+    s.lights.push_back(bad);
+    const std::vector<Light> lights = effectiveLights(s, Settings{});
+    ASSERT_EQ(lights.size(), 1u) << "the NaN light is refused";
+    EXPECT_FLOAT_EQ(lights[0].innerConeAngle, 0.3f);
+    EXPECT_FLOAT_EQ(lights[0].outerConeAngle, 0.7f);
+    EXPECT_FLOAT_EQ(glm::length(lights[0].direction), 1.0f);
+    std::vector<std::string> warnings;
+    Light again = spot;
+    EXPECT_TRUE(validateLight(again, &warnings));
+    ASSERT_EQ(warnings.size(), 1u);
+    EXPECT_NE(warnings[0].find("swapped"), std::string::npos);
+    EXPECT_EQ(again.innerConeAngle, lights[0].innerConeAngle);
+    EXPECT_EQ(again.outerConeAngle, lights[0].outerConeAngle);
 }

@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <sys/stat.h>
 
 namespace fs = std::filesystem;
 
@@ -61,6 +62,8 @@ TEST(Cli, BuffersReportsSeedLayoutTotals) {
     ASSERT_EQ(r.status, 0) << r.output;
     EXPECT_NE(r.output.find("G-buffer:  176 bits per pixel"), std::string::npos) << r.output;
     EXPECT_NE(r.output.find("radiosity: 128 bits per pixel"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("scene load peak: "), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("load.memory_budget of 4096 MiB"), std::string::npos) << r.output;
 }
 
 TEST(Cli, MalformedGltfIsAClearErrorNamingTheFile) {
@@ -101,5 +104,45 @@ TEST(Cli, ShaderThatFailsToCompileIsAClearErrorWithFileAndLine) {
     EXPECT_NE(r.status, 0);
     EXPECT_NE(r.output.find("composite.frag:"), std::string::npos) << r.output;
     EXPECT_NE(r.output.find("failed to compile"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find((dir / "shaders").string() + "/composite.frag"), std::string::npos)
+        << "names the --shaders folder: " << r.output;
+    fs::remove_all(dir);
+}
+
+// unclear messages (issue 11): the size error reads the same in every sub-command and says what is wrong with
+// the number; an unknown sub-command is named; out-of-range settings name key, value and range; a FIFO is no
+// "File not found".
+TEST(Cli, MessagesNameWhatIsWrong) {
+    const std::string box = std::string(DEEPGI_ASSET_DIR) + "/cornell_box/cornell_box.gltf";
+    RunResult render = run("render " + box + " --size 99999999x1 --frames 1");
+    RunResult reference = run("reference " + box + " --size 99999999x1 --spp 1");
+    for (const RunResult* r : {&render, &reference}) {
+        EXPECT_NE(r->status, 0);
+        EXPECT_NE(r->output.find("--size: invalid size '99999999x1': width '99999999' is not a positive integer"),
+                  std::string::npos) << r->output;
+    }
+    RunResult big = run("render " + box + " --size 70000x1 --frames 1");
+    EXPECT_NE(big.output.find("width must be between 1 and 65536"), std::string::npos) << big.output;
+
+    RunResult sub = run("rendr " + box);
+    EXPECT_NE(sub.status, 0);
+    EXPECT_NE(sub.output.find("unknown subcommand 'rendr'"), std::string::npos) << sub.output;
+    EXPECT_NE(sub.output.find("render"), std::string::npos) << "lists the sub-commands: " << sub.output;
+
+    RunResult set = run("render " + box + " --size 16x16 --frames 1 --set light.sun_intensity=-1");
+    EXPECT_NE(set.status, 0);
+    EXPECT_NE(set.output.find("'light.sun_intensity' = -1 is out of range [0, 1e+06] W/m^2"), std::string::npos)
+        << set.output;
+    fs::path dir = tempDir("messages");
+    std::ofstream(dir / "s.json") << "{\"temporal.alpha\": 1}";
+    RunResult file = run("render " + box + " --size 16x16 --frames 1 --settings " + (dir / "s.json").string());
+    EXPECT_NE(file.status, 0);
+    EXPECT_NE(file.output.find("s.json: setting 'temporal.alpha' = 1 is out of range"), std::string::npos) << file.output;
+
+    ASSERT_EQ(mkfifo((dir / "pipe.gltf").c_str(), 0600), 0);
+    RunResult fifo = run("render " + (dir / "pipe.gltf").string() + " --size 16x16 --frames 1");
+    EXPECT_NE(fifo.status, 0);
+    EXPECT_NE(fifo.output.find("pipe.gltf: is a FIFO (named pipe), not a regular file"), std::string::npos)
+        << fifo.output;
     fs::remove_all(dir);
 }

@@ -105,6 +105,19 @@ TEST_F(GLTest, DirectLightMatchesReferenceSpotWithRange) {
     expectDirectLightMatches(l, "spot");
 }
 
+// Inner cone larger than the outer one (the two renderers were 41 % apart): the shared validation swaps them for
+// both, so the comparison holds to the same tolerance (issue 11; scene_validation.h).
+TEST_F(GLTest, DirectLightMatchesReferenceSpotWithInvertedCones) {
+    Light l;
+    l.type = LightType::Spot;
+    l.position = glm::vec3(-1.5f, 3.0f, -1.0f);
+    l.direction = glm::normalize(glm::vec3(0.45f, -1.0f, 0.3f));
+    l.intensity = 20.0f;
+    l.innerConeAngle = 0.6f;
+    l.outerConeAngle = 0.35f;
+    expectDirectLightMatches(l, "spot_inverted");
+}
+
 // Model only what the scene needs: shadow textures exist only for the light types present.
 TEST_F(GLTest, ShadowTexturesOnlyForLightTypesPresent) {
     Light point;

@@ -10,7 +10,9 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <limits>
+#include <sys/stat.h>
 #include <unistd.h>
 
 namespace fs = std::filesystem;
@@ -848,4 +850,303 @@ TEST_F(GltfLoader, DeeplyNestedJsonIsAnError) {
     Builder ok;
     ok.j["extras"] = {{"text", std::string(1000, '[') + "\\\"{"}};
     EXPECT_NO_THROW(loadGltf(ok.writeGltf(dir, "brackets.gltf").string()));
+}
+
+// ---------------------------------------------------------------- hardening, round two (issue 11)
+
+namespace {
+// A one-triangle scene whose node 0 holds the mesh; `extra` is merged into the document.
+Builder triangleScene() {
+    Builder b;
+    const int pos = b.vec3(kTriPos);
+    b.mesh({{"POSITION", pos}});
+    b.node({{"mesh", 0}});
+    b.scene({0});
+    return b;
+}
+std::string firstError(const fs::path& p, const GltfLoadOptions& opt = {}) {
+    try {
+        loadGltf(p.string(), opt);
+    } catch (const SceneLoadError& e) {
+        return e.what();
+    }
+    return "";
+}
+}  // namespace
+
+// memory: an accessor without bufferView (valid glTF: all zeros) has a count bounded by no file size; it is
+// counted against the budget before anything is allocated (67 M vertices took 7.3 GB and a minute before).
+TEST_F(GltfLoader, AccessorWithoutBufferViewIsCountedAgainstTheBudget) {
+    Builder b;
+    b.j["accessors"].push_back({{"componentType", kFloat}, {"type", "VEC3"}, {"count", 67000000}});
+    b.mesh({{"POSITION", 0}});
+    b.node({{"mesh", 0}, {"name", "huge"}});
+    b.scene({0});
+    const fs::path p = b.writeGltf(dir, "zeros.gltf");
+    expectError(p, "memory budget");
+    const std::string msg = firstError(p);
+    EXPECT_NE(msg.find("mesh 'mesh0/0'"), std::string::npos) << msg;
+    EXPECT_NE(msg.find("MiB"), std::string::npos) << msg;
+    // a small one loads, with the warning it always had
+    Builder small;
+    small.j["accessors"].push_back({{"componentType", kFloat}, {"type", "VEC3"}, {"count", 3}});
+    small.mesh({{"POSITION", 0}});
+    small.node({{"mesh", 0}});
+    small.scene({0});
+    Scene sc = loadGltf(small.writeGltf(dir, "zeros_small.gltf").string());
+    EXPECT_TRUE(hasWarning(sc, "no data")) << allWarnings(sc);
+}
+
+// memory: instancing copies a mesh per node; the copies are counted, the message names the instance.
+TEST_F(GltfLoader, InstancedMeshIsCountedPerInstance) {
+    Builder b;
+    std::vector<float> pos;
+    std::vector<uint32_t> idx;
+    for (int i = 0; i < 1000; ++i) {  // 1000 separate triangles
+        for (float v : kTriPos) pos.push_back(v + float(i));
+        for (uint32_t k = 0; k < 3; ++k) idx.push_back(uint32_t(i * 3) + k);
+    }
+    const int pa = b.vec3(pos), ia = b.indices32(idx);
+    b.mesh({{"POSITION", pa}}, ia);
+    std::vector<int> roots;
+    for (int i = 0; i < 200; ++i) roots.push_back(b.node({{"mesh", 0}, {"translation", {0, 0, i}}}));
+    b.scene(roots);
+    const fs::path p = b.writeGltf(dir, "instances.gltf");
+    Scene all = loadGltf(p.string());
+    EXPECT_EQ(all.triangleCount(), 200000u);
+    // what the Scene keeps is at least its vertices and indices; the peak is below the default budget
+    const uint64_t kept = 200000ull * 3 * (sizeof(deepgi::Vertex) + 4);
+    EXPECT_GE(all.loadPeakBytes, kept);
+    EXPECT_LE(all.loadPeakBytes, GltfLoadOptions{}.memoryBudget);
+    GltfLoadOptions opt;
+    opt.memoryBudget = kept / 2;  // room for about half of the instances
+    expectError(p, "memory budget", opt);
+    const std::string msg = firstError(p, opt);
+    EXPECT_NE(msg.find("(instance "), std::string::npos) << msg;
+    EXPECT_EQ(msg.find("(instance 1 "), std::string::npos) << "the first instances fit: " << msg;
+}
+
+// memory: buffers are counted before tinygltf allocates them.
+TEST_F(GltfLoader, BufferLargerThanTheBudgetIsRefusedBeforeReading) {
+    Builder b = triangleScene();
+    const fs::path p = b.writeGltfBin(dir, "buf.gltf", "buf.bin");
+    GltfLoadOptions opt;
+    opt.memoryBudget = fs::file_size(p) + 16;  // the .gltf itself fits, the 36-byte buffer does not
+    expectError(p, "buffer 0 (byteLength)", opt);
+}
+
+// safety check bypassed: a symlink inside the folder that leads outside it is refused like "../".
+TEST_F(GltfLoader, SymlinkLeadingOutsideTheFolderIsRefused) {
+    Builder b = triangleScene();
+    b.writeGltfBin(dir.parent_path(), "unused.gltf", "outside.bin");  // the real buffer, outside the scene folder
+    fs::create_symlink(dir.parent_path() / "outside.bin", dir / "link.bin");
+    Builder viaLink = triangleScene();
+    viaLink.finishBuffer("link.bin");
+    writeFile(dir / "link.gltf", viaLink.j.dump());
+    expectError(dir / "link.gltf", "symlink that leads outside the scene folder");
+    // a symlink to a system file used as a buffer
+    fs::create_symlink("/etc/passwd", dir / "passwd.bin");
+    Builder sys = triangleScene();
+    sys.finishBuffer("passwd.bin");
+    writeFile(dir / "sys.gltf", sys.j.dump());
+    expectError(dir / "sys.gltf", "symlink that leads outside");
+    // a symlink that stays inside the folder is fine
+    fs::create_directories(dir / "data");
+    fs::copy_file(dir.parent_path() / "outside.bin", dir / "data" / "real.bin");
+    fs::create_symlink("data/real.bin", dir / "inside.bin");
+    Builder in = triangleScene();
+    in.finishBuffer("inside.bin");
+    writeFile(dir / "inside.gltf", in.j.dump());
+    EXPECT_EQ(loadGltf((dir / "inside.gltf").string()).triangleCount(), 1u);
+    // an image through an escaping symlink: dropped with a warning naming the reason
+    fs::create_symlink("/etc/hostname", dir / "img.png");
+    Builder img = triangleScene();
+    img.j["images"] = {{{"uri", "img.png"}}};
+    img.j["textures"] = {{{"source", 0}}};
+    img.j["materials"] = {{{"pbrMetallicRoughness", {{"baseColorTexture", {{"index", 0}}}}}}};
+    Scene sc = loadGltf(img.writeGltf(dir, "img.gltf").string());
+    EXPECT_TRUE(hasWarning(sc, "img.png", "symlink")) << allWarnings(sc);
+}
+
+// unclear message: a FIFO or a device is not "File not found" (and opening a FIFO would block forever).
+TEST_F(GltfLoader, NonRegularFilesAreRefusedWithTheirOwnMessage) {
+    ASSERT_EQ(mkfifo((dir / "pipe.bin").c_str(), 0600), 0);
+    Builder b = triangleScene();
+    b.finishBuffer("pipe.bin");
+    writeFile(dir / "fifo.gltf", b.j.dump());
+    expectError(dir / "fifo.gltf", "FIFO");
+    ASSERT_EQ(mkfifo((dir / "main.gltf").c_str(), 0600), 0);
+    expectError(dir / "main.gltf", "is a FIFO (named pipe), not a regular file");
+    fs::create_symlink("/dev/zero", dir / "zero.gltf");
+    expectError(dir / "zero.gltf", "character device");
+}
+
+// silent wrong: tinygltf stores indices in int via static_cast, so 2^32 became 0 and passed every range check.
+TEST_F(GltfLoader, IndicesOf2To32AndAboveAreErrorsNotWrapped) {
+    struct Case { std::string name; std::function<void(json&)> edit; std::string where; };
+    const std::vector<Case> cases = {
+        {"node_mesh", [](json& j) { j["nodes"][0]["mesh"] = 4294967296ull; }, "nodes[0].mesh"},
+        {"scene_nodes", [](json& j) { j["scenes"][0]["nodes"][0] = 4294967296ull; }, "scenes[0].nodes[0]"},
+        {"scene", [](json& j) { j["scene"] = 4294967296ull; }, "scene"},
+        {"attribute", [](json& j) { j["meshes"][0]["primitives"][0]["attributes"]["POSITION"] = 4294967296ull; },
+         "attributes.POSITION"},
+        {"material", [](json& j) { j["meshes"][0]["primitives"][0]["material"] = 4294967297ull; }, "material"},
+        {"camera", [](json& j) { j["nodes"][0]["camera"] = 8589934592ull; }, "nodes[0].camera"},
+        {"accessor_view", [](json& j) { j["accessors"][0]["bufferView"] = 4294967296ull; }, "accessors[0].bufferView"},
+        {"negative", [](json& j) { j["nodes"][0]["mesh"] = -5; }, "nodes[0].mesh"},
+        {"fraction", [](json& j) { j["nodes"][0]["mesh"] = 0.5; }, "not an integer"},
+    };
+    for (const auto& c : cases) {
+        Builder b = triangleScene();
+        c.edit(b.j);
+        const fs::path p = b.writeGltf(dir, c.name + ".gltf");
+        expectError(p, c.where);
+        if (c.name != "fraction") expectError(p, "out of range");
+    }
+}
+
+// silent wrong: a texture larger than GL_MAX_TEXTURE_SIZE rendered black; it is downscaled with a warning.
+TEST_F(GltfLoader, TextureLargerThanTheLimitIsDownscaledWithAWarning) {
+    const int w = 16400, h = 2;
+    std::vector<uint8_t> px(size_t(w) * h * 3, 0);
+    for (int x = 0; x < w; ++x)
+        for (int y = 0; y < h; ++y) px[(size_t(y) * w + x) * 3 + 0] = 200;  // all red 200
+    const std::vector<uint8_t> bytes = png(w, h, 3, px);
+    writeFile(dir / "wide.png", bytes);
+    Builder b = triangleScene();
+    b.j["images"] = {{{"uri", "wide.png"}}};
+    b.j["textures"] = {{{"source", 0}}};
+    b.j["materials"] = {{{"pbrMetallicRoughness", {{"baseColorTexture", {{"index", 0}}}}}}};
+    Scene sc = loadGltf(b.writeGltf(dir, "wide.gltf").string());
+    ASSERT_EQ(sc.images.size(), 1u);
+    EXPECT_EQ(sc.images[0].width, 16384);
+    EXPECT_EQ(sc.images[0].height, 2);
+    EXPECT_TRUE(hasWarning(sc, "wide.png", "downscaled to 16384x2")) << allWarnings(sc);
+    // a constant image stays that constant (sRGB-correct filter)
+    EXPECT_NEAR(sc.images[0].rgba8[4 * 5000], 200, 1);
+    EXPECT_EQ(sc.images[0].rgba8[4 * 5000 + 3], 255);
+    GltfLoadOptions opt;
+    opt.maxTextureSize = 4096;
+    Scene small = loadGltf((dir / "wide.gltf").string(), opt);
+    EXPECT_EQ(small.images[0].width, 4096);
+    EXPECT_EQ(small.images[0].height, 1);
+}
+
+// unclear messages: each names the element and what is wrong with it, in one readable line.
+TEST_F(GltfLoader, MessagesNameTheProblem) {
+    // Draco: the primitive, not "accessor[0] invalid bufferView"
+    Builder draco = triangleScene();
+    draco.j["accessors"].push_back({{"componentType", kUShort}, {"type", "SCALAR"}, {"count", 3}});
+    draco.j["meshes"][0]["primitives"][0]["indices"] = 1;
+    draco.j["meshes"][0]["primitives"][0]["extensions"] = {{"KHR_draco_mesh_compression", {{"bufferView", 0}}}};
+    draco.j["extensionsUsed"] = {"KHR_draco_mesh_compression"};
+    expectError(draco.writeGltf(dir, "draco.gltf"), "Draco-compressed");
+    draco.j["extensionsRequired"] = {"KHR_draco_mesh_compression"};
+    expectError(draco.writeGltf(dir, "draco_req.gltf"), "required extension 'KHR_draco_mesh_compression'");
+    // a data URI whose byteLength is wrong: says byteLength, does not quote the payload
+    Builder big;
+    std::vector<float> pos(300000, 0.0f);
+    big.vec3(pos);
+    big.mesh({{"POSITION", 0}});
+    big.node({{"mesh", 0}});
+    big.scene({0});
+    const fs::path bp = big.writeGltf(dir, "len.gltf");
+    json j = json::parse(std::ifstream(bp));
+    j["buffers"][0]["byteLength"] = 1200004;
+    writeFile(bp, j.dump());
+    expectError(bp, "data URI holds 1200000 bytes but byteLength says 1200004");
+    EXPECT_LT(firstError(bp).size(), 400u);
+    // a buffer without uri in a .gltf
+    Builder nouri = triangleScene();
+    nouri.writeGltf(dir, "tmp.gltf");
+    nouri.j["buffers"][0].erase("uri");
+    writeFile(dir / "nouri.gltf", nouri.j.dump());
+    expectError(dir / "nouri.gltf", "buffer 0 has no uri");
+    EXPECT_EQ(firstError(dir / "nouri.gltf").find("escapes"), std::string::npos);
+    // a URI with \u0000: the message shows all of it
+    Builder nul = triangleScene();
+    nul.finishBuffer(std::string("a\0b.bin", 7));
+    writeFile(dir / "nul.gltf", nul.j.dump());
+    expectError(dir / "nul.gltf", "a\\x00b.bin");
+}
+
+// silent wrong / crash: the cameras that made `reference` abort in Embree and `render` draw black are refused
+// (with one warning each) by the validation both renderers share; a tiny but valid scale is kept.
+TEST_F(GltfLoader, DegenerateCameraTransformsAreSkippedWithAWarning) {
+    struct Case { std::string name; json node; bool kept; };
+    const std::vector<Case> cases = {
+        {"scale0", {{"camera", 0}, {"scale", {0, 0, 0}}}, false},
+        {"scale_tiny", {{"camera", 0}, {"scale", {1e-30, 1e-30, 1e-30}}}, true},
+        {"zero_matrix", {{"camera", 0}, {"matrix", std::vector<double>(16, 0.0)}}, false},
+        {"far", {{"camera", 0}, {"translation", {1e38, 0, 0}}}, false},
+    };
+    for (const auto& c : cases) {
+        Builder b = triangleScene();
+        b.j["cameras"] = {{{"type", "perspective"}, {"name", "cam"}, {"perspective", {{"yfov", 0.8}, {"znear", 0.1}}}}};
+        b.node(c.node);
+        b.scene({0, 1});
+        Scene sc = loadGltf(b.writeGltf(dir, c.name + ".gltf").string());
+        EXPECT_EQ(sc.cameras.size(), c.kept ? 1u : 0u) << c.name;
+        EXPECT_EQ(hasWarning(sc, "camera 'cam'", "skipped"), !c.kept) << c.name << ": " << allWarnings(sc);
+        if (c.kept) {
+            const glm::mat4& m = sc.cameras[0].cameraToWorld;
+            for (int i = 0; i < 3; ++i) EXPECT_NEAR(glm::length(glm::vec3(m[i])), 1.0f, 1e-5f) << c.name;
+        }
+    }
+    // a parent scaled to 0 collapses its child camera the same way
+    Builder p = triangleScene();
+    p.j["cameras"] = {{{"type", "perspective"}, {"name", "cam"}, {"perspective", {{"yfov", 0.8}, {"znear", 0.1}}}}};
+    p.node({{"scale", {0, 0, 0}}, {"children", {2}}});
+    p.node({{"camera", 0}});
+    p.scene({0, 1});
+    Scene sc = loadGltf(p.writeGltf(dir, "parent0.gltf").string());
+    EXPECT_TRUE(sc.cameras.empty());
+}
+
+TEST_F(GltfLoader, CameraClipPlanesAndMagnificationAreValidated) {
+    Builder b = triangleScene();
+    b.j["cameras"] = {{{"type", "perspective"}, {"name", "inverted"}, {"perspective", {{"yfov", 0.8}, {"znear", 10.0}, {"zfar", 1.0}}}},
+                      {{"type", "orthographic"}, {"name", "flat"}, {"orthographic", {{"xmag", 0.0}, {"ymag", 0.0}, {"znear", 0.0}, {"zfar", 10.0}}}},
+                      {{"type", "orthographic"}, {"name", "neg"}, {"orthographic", {{"xmag", -2.0}, {"ymag", -1.0}, {"znear", 0.0}, {"zfar", 10.0}}}}};
+    b.node({{"camera", 0}});
+    b.node({{"camera", 1}});
+    b.node({{"camera", 2}});
+    b.scene({0, 1, 2, 3});
+    Scene sc = loadGltf(b.writeGltf(dir, "clip.gltf").string());
+    ASSERT_EQ(sc.cameras.size(), 2u) << allWarnings(sc);
+    EXPECT_EQ(sc.cameras[0].name, "inverted");
+    EXPECT_EQ(sc.cameras[0].zfar, 0.0f) << "far plane ignored";
+    EXPECT_TRUE(hasWarning(sc, "camera 'inverted'", "zfar ignored")) << allWarnings(sc);
+    EXPECT_TRUE(hasWarning(sc, "camera 'flat'", "no size")) << allWarnings(sc);
+    EXPECT_EQ(sc.cameras[1].name, "neg");
+    EXPECT_EQ(sc.cameras[1].ymag, 1.0f);
+    EXPECT_TRUE(hasWarning(sc, "camera 'neg'", "magnitude")) << allWarnings(sc);
+}
+
+TEST_F(GltfLoader, LightsAndMaterialFactorsAreValidatedWithWarnings) {
+    Builder b = triangleScene();
+    b.j["extensionsUsed"] = {"KHR_lights_punctual"};
+    b.j["extensions"] = {{"KHR_lights_punctual", {{"lights", {
+        {{"type", "spot"}, {"name", "inverted"}, {"intensity", 5.0}, {"spot", {{"innerConeAngle", 0.7}, {"outerConeAngle", 0.3}}}},
+        {{"type", "point"}, {"name", "negative"}, {"intensity", -1.0}, {"color", {1.0, -0.5, 1.0}}}}}}}};
+    b.node({{"extensions", {{"KHR_lights_punctual", {{"light", 0}}}}}});
+    b.node({{"extensions", {{"KHR_lights_punctual", {{"light", 1}}}}}});
+    b.j["materials"] = {{{"name", "bright"}, {"pbrMetallicRoughness", {{"baseColorFactor", {2.0, 0.5, -1.0, 1.0}}}},
+                         {"emissiveFactor", {-1.0, 0.5, 0.0}}}};
+    b.j["meshes"][0]["primitives"][0]["material"] = 0;
+    b.scene({0, 1, 2});
+    Scene sc = loadGltf(b.writeGltf(dir, "lights.gltf").string());
+    ASSERT_EQ(sc.lights.size(), 2u);
+    EXPECT_FLOAT_EQ(sc.lights[0].innerConeAngle, 0.3f);
+    EXPECT_FLOAT_EQ(sc.lights[0].outerConeAngle, 0.7f);
+    EXPECT_TRUE(hasWarning(sc, "light 'inverted'", "swapped")) << allWarnings(sc);
+    EXPECT_EQ(sc.lights[1].intensity, 0.0f);
+    EXPECT_EQ(sc.lights[1].color.y, 0.0f);
+    EXPECT_TRUE(hasWarning(sc, "light 'negative'", "negative intensity")) << allWarnings(sc);
+    EXPECT_TRUE(hasWarning(sc, "light 'negative'", "negative colour")) << allWarnings(sc);
+    ASSERT_EQ(sc.materials.size(), 1u);
+    expectVec3(glm::vec3(sc.materials[0].baseColorFactor), {1.0f, 0.5f, 0.0f});
+    expectVec3(sc.materials[0].emissiveFactor, {0.0f, 0.5f, 0.0f});
+    EXPECT_TRUE(hasWarning(sc, "material 'bright'", "baseColorFactor")) << allWarnings(sc);
+    EXPECT_TRUE(hasWarning(sc, "material 'bright'", "emissiveFactor")) << allWarnings(sc);
 }

@@ -18,6 +18,7 @@ RUN="$BUILD/fuzz-run"
 rm -rf "$RUN/corpus"
 mkdir -p "$RUN/corpus" "$RUN/artifacts"
 cp "$ROOT"/tests/fuzz/corpus/* "$RUN/corpus/"
+cp "$ROOT"/tests/data/gltf/regress/* "$RUN/corpus/"  # the shapes that once crashed or were refused unclearly
 
 set +e
 "$BUILD/tests/fuzz/fuzz_gltf_loader" "$RUN/corpus" \

@@ -34,9 +34,45 @@ template <> SettingType typeOf<float>() { return SettingType::Float; }
 template <> SettingType typeOf<int>() { return SettingType::Int; }
 template <> SettingType typeOf<bool>() { return SettingType::Bool; }
 
-double clampTo(const SettingInfo& info, double v) {
+// Thrown for a value outside the declared range; the viewer's state file turns it into a warning and a clamp.
+struct OutOfRange : std::runtime_error {
+    using std::runtime_error::runtime_error;
+};
+
+std::string rangeText(const SettingInfo& info) {
+    std::string r = "[" + formatSettingValue(info, info.min) + ", " + formatSettingValue(info, info.max) + "]";
+    if (info.unit && *info.unit) r += std::string(" ") + info.unit;
+    return r;
+}
+
+// The value as given, or an error naming key, value and range: never a silent clamp.
+double checkedValue(const SettingInfo& info, double v, const std::string& text) {
     if (!std::isfinite(v)) throw std::runtime_error(std::string("setting '") + info.key + "': value is not finite");
-    return std::min(std::max(v, info.min), info.max);
+    if (info.type == SettingType::Int && v != std::floor(v))
+        throw std::runtime_error(std::string("setting '") + info.key + "' expects an integer, got " + text);
+    if (v < info.min || v > info.max)
+        throw OutOfRange(std::string("setting '") + info.key + "' = " + text + " is out of range " + rangeText(info));
+    return v;
+}
+
+std::string numberText(double v) {
+    std::ostringstream os;
+    os << v;
+    return os.str();
+}
+
+// One "key": value of a settings JSON object. Throws std::runtime_error (OutOfRange for a range problem).
+void applyJsonValue(Settings& s, const std::string& key, const nlohmann::json& v) {
+    const SettingInfo* info = findSetting(key);
+    if (!info) throw std::runtime_error("unknown setting '" + key + "'");
+    if (v.is_boolean()) applySetting(s, key, v.get<bool>() ? "true" : "false");
+    else if (v.is_number()) {
+        if (info->type == SettingType::Bool || info->type == SettingType::Enum)
+            throw std::runtime_error("setting '" + key + "' has the wrong type");
+        const double d = v.get<double>();
+        info->set(s, checkedValue(*info, d, numberText(d)));
+    } else if (v.is_string()) applySetting(s, key, v.get<std::string>());
+    else throw std::runtime_error("setting '" + key + "' has the wrong type");
 }
 }  // namespace
 
@@ -124,7 +160,7 @@ void applySetting(Settings& s, const std::string& key, const std::string& value)
         if (used == 0 || used != value.size())
             throw std::runtime_error("setting '" + key + "' expects a number, got '" + value + "'");
     }
-    info->set(s, clampTo(*info, v));
+    info->set(s, checkedValue(*info, v, value));
 }
 
 void applyAssignment(Settings& s, const std::string& kv) {
@@ -150,21 +186,32 @@ nlohmann::json settingsToJson(const Settings& s) {
 void applySettingsJson(Settings& s, const nlohmann::json& j, const std::string& where) {
     if (!j.is_object()) throw std::runtime_error(where + ": settings must be a JSON object of \"key\": value");
     for (auto it = j.begin(); it != j.end(); ++it) {
-        const SettingInfo* info = findSetting(it.key());
-        if (!info) throw std::runtime_error(where + ": unknown setting '" + it.key() + "'");
-        const auto& v = it.value();
         try {
-            if (v.is_boolean()) applySetting(s, it.key(), v.get<bool>() ? "true" : "false");
-            else if (v.is_number()) {
-                if (info->type == SettingType::Bool || info->type == SettingType::Enum)
-                    throw std::runtime_error("setting '" + it.key() + "' has the wrong type");
-                info->set(s, clampTo(*info, v.get<double>()));
-            } else if (v.is_string()) applySetting(s, it.key(), v.get<std::string>());
-            else throw std::runtime_error("setting '" + it.key() + "' has the wrong type");
+            applyJsonValue(s, it.key(), it.value());
         } catch (const std::runtime_error& e) {
             throw std::runtime_error(where + ": " + e.what());
         }
     }
+}
+
+std::vector<std::string> applySettingsJsonLeniently(Settings& s, const nlohmann::json& j, const std::string& where) {
+    std::vector<std::string> warnings;
+    if (!j.is_object()) return {where + ": settings must be a JSON object of \"key\": value; ignored"};
+    for (auto it = j.begin(); it != j.end(); ++it) {
+        try {
+            applyJsonValue(s, it.key(), it.value());
+        } catch (const OutOfRange& e) {
+            const SettingInfo* info = findSetting(it.key());
+            const double given = it.value().is_number() ? it.value().get<double>()
+                                                        : std::stod(it.value().get<std::string>());  // parsed before
+            const double clamped = std::min(std::max(given, info->min), info->max);
+            info->set(s, clamped);
+            warnings.push_back(where + ": " + e.what() + "; using " + formatSettingValue(*info, clamped));
+        } catch (const std::exception& e) {
+            warnings.push_back(where + ": " + e.what() + "; ignored");
+        }
+    }
+    return warnings;
 }
 
 void loadSettingsFile(Settings& s, const std::string& path) {

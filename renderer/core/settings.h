@@ -57,14 +57,18 @@ const std::vector<SettingInfo>& settingTable();
 const SettingInfo* findSetting(const std::string& key);
 std::vector<std::string> settingGroups();  // in pipeline order
 
-// "key=value"; value is a number, true/false/on/off, or an enum choice name. Values are clamped to the range.
-// Throws std::runtime_error naming the key and the problem.
+// "key=value"; value is a number, true/false/on/off, or an enum choice name. A value outside the declared range
+// (or a fraction for an integer setting) throws std::runtime_error naming the key, the value and the range.
 void applySetting(Settings& s, const std::string& key, const std::string& value);
 void applyAssignment(Settings& s, const std::string& keyEqualsValue);
 
 nlohmann::json settingsToJson(const Settings& s);
 // Unknown keys and wrong types throw std::runtime_error naming the key; `where` names the file for messages.
+// Out-of-range values throw too (--settings files and presets).
 void applySettingsJson(Settings& s, const nlohmann::json& j, const std::string& where);
+// For saved state (the viewer's): an out-of-range value is clamped and an unknown key or wrong type skipped, each
+// with a returned warning naming `where`, the key, the value and the range.
+std::vector<std::string> applySettingsJsonLeniently(Settings& s, const nlohmann::json& j, const std::string& where);
 void loadSettingsFile(Settings& s, const std::string& path);
 void saveSettingsFile(const Settings& s, const std::string& path);
 

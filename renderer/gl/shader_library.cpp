@@ -165,7 +165,7 @@ GLuint ShaderLibrary::build(const ProgramDesc& desc, std::map<std::string, int64
             GLint ok = 0;
             glGetShaderiv(sh, GL_COMPILE_STATUS, &ok);
             if (!ok)
-                throw ShaderError(*file + ": " + stageName(stage) + " shader failed to compile:\n" +
+                throw ShaderError(dir_ + "/" + *file + ": " + stageName(stage) + " shader failed to compile:\n" +
                                   mapLog(infoLog(sh, false), pp.names));
         }
         GLuint prog = glCreateProgram();
@@ -177,7 +177,7 @@ GLuint ShaderLibrary::build(const ProgramDesc& desc, std::map<std::string, int64
             const std::string log = infoLog(prog, true);
             glDeleteProgram(prog);
             std::string what = desc.vertex + (desc.fragment.empty() ? desc.compute : " + " + desc.fragment);
-            throw ShaderError(what + ": program failed to link:\n" + std::string(log.c_str()));
+            throw ShaderError(what + " (in " + dir_ + "): program failed to link:\n" + std::string(log.c_str()));
         }
         glObjectLabel(GL_PROGRAM, prog, -1, (desc.fragment.empty() ? desc.compute : desc.fragment).c_str());
         cleanup();

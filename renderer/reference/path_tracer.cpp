@@ -1,5 +1,7 @@
 #include "renderer/reference/path_tracer.h"
 
+#include "renderer/scene/scene_validation.h"
+
 #include "renderer/scene/lighting.h"
 
 #include <embree3/rtcore.h>
@@ -336,20 +338,21 @@ struct ReferenceTracer::Impl {
         s.normal = n;
         const Material& m = *g.material;
         const glm::vec2 uv = w * a.uv + u * b.uv + v * c.uv;
-        s.albedo = glm::vec3(m.baseColorFactor);
+        // Clamped like the renderer's RGBA8 albedo buffer (and validateMaterial at load), so the two agree.
+        s.albedo = glm::clamp(glm::vec3(m.baseColorFactor), 0.0f, 1.0f);
         if (g.baseTexture.valid()) s.albedo *= glm::vec3(g.baseTexture.sample(uv));
         s.emission = m.emissiveFactor;
         if (g.emissiveTexture.valid() && m.emissive()) s.emission *= glm::vec3(g.emissiveTexture.sample(uv));
         return s;
     }
 
-    bool intersect(const glm::vec3& o, const glm::vec3& d, RTCRayHit& rh) const {
+    bool intersect(const glm::vec3& o, const glm::vec3& d, RTCRayHit& rh, float tnear = 0.0f, float tfar = kInf) const {
         RTCIntersectContext ctx;
         rtcInitIntersectContext(&ctx);
         rh.ray.org_x = o.x; rh.ray.org_y = o.y; rh.ray.org_z = o.z;
         rh.ray.dir_x = d.x; rh.ray.dir_y = d.y; rh.ray.dir_z = d.z;
-        rh.ray.tnear = 0.0f;
-        rh.ray.tfar = kInf;
+        rh.ray.tnear = tnear;
+        rh.ray.tfar = tfar;
         rh.ray.time = 0.0f;
         rh.ray.mask = ~0u;
         rh.ray.id = 0;
@@ -399,13 +402,16 @@ struct ReferenceTracer::Impl {
 
     // One path through the scene. Adds to direct (what the camera sees directly plus direct light at the first
     // hit) and indirect (everything after the first bounce).
-    void tracePath(glm::vec3 origin, glm::vec3 dir, Pcg32& rng, const std::vector<Light>& lights, float background,
-                   int maxBounces, glm::vec3& direct, glm::vec3& indirect, uint64_t& rays) const {
+    // The camera ray runs from the near to the far clip plane (clipNear/clipFar along it), as the rasterizer clips.
+    void tracePath(glm::vec3 origin, glm::vec3 dir, float clipNear, float clipFar, Pcg32& rng,
+                   const std::vector<Light>& lights, float background, int maxBounces, glm::vec3& direct,
+                   glm::vec3& indirect, uint64_t& rays) const {
         glm::vec3 throughput(1.0f);
         for (int depth = 0;; ++depth) {
             RTCRayHit rh;
             ++rays;
-            if (!intersect(origin, dir, rh)) {
+            const bool hit = depth == 0 ? intersect(origin, dir, rh, clipNear, clipFar) : intersect(origin, dir, rh);
+            if (!hit) {
                 if (depth == 0) direct += glm::vec3(background);
                 return;
             }
@@ -491,6 +497,11 @@ ReferenceResult ReferenceTracer::render(const Camera& camera, const Settings& se
         throw std::invalid_argument("reference: threads must be 0 (all cores) or more, got " +
                                     std::to_string(opt.threads));
 
+    // A degenerate camera would make Embree abort on its ray.valid() assertion; the renderer refuses the same ones.
+    const std::string cameraIssue = cameraProblem(camera);
+    if (!cameraIssue.empty())
+        throw std::invalid_argument("reference: camera '" + camera.name + "' cannot be rendered: " + cameraIssue);
+    const glm::vec3 forward = camera.forward();
     const std::vector<Light> lights = effectiveLights(impl_->scene, settings);
     const float background = settings.background;
     const int W = opt.width, H = opt.height;
@@ -528,7 +539,9 @@ ReferenceResult ReferenceTracer::render(const Camera& camera, const Settings& se
                             glm::vec3 o, d;
                             camera.primaryRay(float(x) + jx, float(y) + jy, W, H, o, d);
                             glm::vec3 direct(0.0f), indirect(0.0f);
-                            impl_->tracePath(o, d, rng, lights, background, opt.maxBounces, direct, indirect, rays);
+                            const float along = std::max(glm::dot(d, forward), 1e-6f);  // 1 for orthographic
+                            impl_->tracePath(o, d, camera.znear / along, camera.zfar / along, rng, lights, background,
+                                             opt.maxBounces, direct, indirect, rays);
                             const glm::dvec3 f = glm::dvec3(direct) + glm::dvec3(indirect);
                             sumD += glm::dvec3(direct);
                             sumI += glm::dvec3(indirect);

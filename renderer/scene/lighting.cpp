@@ -1,5 +1,7 @@
 #include "renderer/scene/lighting.h"
 
+#include "renderer/scene/scene_validation.h"
+
 #include <cmath>
 #include <limits>
 
@@ -21,8 +23,12 @@ std::vector<Light> effectiveLights(const Scene& scene, const Settings& s) {
         sun.direction = defaultSunDirection(s);
         lights.push_back(sun);
     }
-    for (auto& l : lights) l.intensity *= s.lightScale;
-    return lights;
+    // The same corrections the loader made (with warnings) for scenes built in code, so renderer and path tracer agree.
+    std::vector<Light> valid;
+    for (auto& l : lights)
+        if (validateLight(l, nullptr)) valid.push_back(l);
+    for (auto& l : valid) l.intensity *= s.lightScale;
+    return valid;
 }
 
 LightSample sampleLight(const Light& light, const glm::vec3& p) {

@@ -103,6 +103,7 @@ struct Scene {
     std::vector<CameraDesc> cameras;
     std::vector<std::string> warnings;
     Aabb bounds;
+    uint64_t loadPeakBytes = 0;  // most memory the loader held at once (its own count, see GltfLoadOptions)
 
     size_t triangleCount() const {
         size_t n = 0;

@@ -23,6 +23,8 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     deepgi::GltfLoadOptions options;
     options.maxElements = 1u << 20;     // keep allocations well under libFuzzer's RSS limit
     options.maxImagePixels = 1u << 22;
+    options.memoryBudget = uint64_t(256) << 20;  // the budget check itself is fuzzed, under -rss_limit_mb=2048
+    options.maxTextureSize = 256;                // and the downscale path with it
     try {
         deepgi::Scene scene = deepgi::loadGltf(file.string(), options);
         (void)scene;
