@@ -1,0 +1,48 @@
+// The Pipeline panel: the passes in order with what each reads and writes. Click a texture to show it, a pass to
+// see its settings and time.
+#include "ui/viewer_ui.h"
+
+#include <imgui.h>
+
+namespace deepgi::ui {
+
+PipelineActions drawPipelinePanel(const PipelineGraph& g, PipelinePanelState& st, Settings& settings) {
+    PipelineActions act;
+    ImGui::TextDisabled("%zu passes, in execution order; click a texture to show it", g.passes.size());
+    for (size_t i = 0; i < g.passes.size(); ++i) {
+        const PipelineNode& n = g.passes[i];
+        ImGui::PushID(int(i));
+        char label[160];
+        if (n.ms >= 0.0) std::snprintf(label, sizeof(label), "%zu. %s  (%.2f ms)%s", i + 1, n.name.c_str(), n.ms, n.enabled ? "" : "  off");
+        else std::snprintf(label, sizeof(label), "%zu. %s%s", i + 1, n.name.c_str(), n.enabled ? "" : "  off");
+        if (!n.enabled) ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyleColorVec4(ImGuiCol_TextDisabled));
+        if (ImGui::Selectable(label, st.selectedPass == n.name)) st.selectedPass = st.selectedPass == n.name ? "" : n.name;
+        if (!n.enabled) ImGui::PopStyleColor();
+        auto textures = [&](const char* what, const std::vector<std::string>& names) {
+            ImGui::Indent();
+            ImGui::TextDisabled("%s", what);
+            for (const auto& t : names) {
+                ImGui::SameLine();
+                if (ImGui::SmallButton(t.c_str())) act.showTexture = t;
+                if (ImGui::IsItemHovered()) ImGui::SetTooltip("show '%s' in the viewport and the inspector", t.c_str());
+            }
+            if (names.empty()) { ImGui::SameLine(); ImGui::TextDisabled("-"); }
+            ImGui::Unindent();
+        };
+        textures("reads ", n.reads);
+        textures("writes", n.writes);
+        if (st.selectedPass == n.name) {
+            ImGui::Indent();
+            ImGui::TextDisabled(n.ms >= 0.0 ? "last frame %.3f ms" : "no time recorded (not run this frame)", n.ms);
+            for (const auto& key : n.settingKeys)
+                if (const SettingInfo* info = findSetting(key)) act.settingsChanged |= drawSettingWidget(settings, *info);
+            if (n.settingKeys.empty()) ImGui::TextDisabled("no settings of its own");
+            ImGui::Unindent();
+        }
+        ImGui::Separator();
+        ImGui::PopID();
+    }
+    return act;
+}
+
+}  // namespace deepgi::ui
