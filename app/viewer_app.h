@@ -15,6 +15,7 @@
 // glad first: GLFW must not pull in the system GL header.
 #include <GLFW/glfw3.h>
 
+#include <deque>
 #include <memory>
 #include <string>
 #include <vector>
@@ -43,6 +44,7 @@ public:
 
     // ScriptHost (ui/script.h)
     bool scriptReady() override { return renderer_ && renderer_->frameIndex() > 0; }
+    bool scriptBusy() override { return !uiDrag_.empty(); }
     void scriptKey(int key, int mods) override;
     void scriptDrag(int button, glm::dvec2 from, glm::dvec2 to, int mods) override;
     void scriptPointer(glm::dvec2 at, int button, bool down) override;
@@ -157,6 +159,7 @@ private:
     bool scriptPointerSet_ = false;     // the script owns the UI pointer (the real one, Xvfb's, is ignored)
     glm::dvec2 scriptPointerAt_{-1e6};
     bool scriptButtons_[3] = {false, false, false};
+    std::deque<std::pair<glm::dvec2, bool>> uiDrag_;  // pointer position and left button, one per frame
     double scriptWheel_ = 0.0;          // notches for this frame, given to the window under scriptWheelAt_
     glm::dvec2 scriptWheelAt_{0.0};
     bool quit_ = false;

@@ -140,6 +140,12 @@ void Viewer::capture() {
                 ++n;
             }
         saveSettingsFile(settings_, (dir / "settings.json").string());
+        if (view_.pathTrace != ui::PathTraceMode::Off && ptSnap_.samples > 0) {
+            writeExr((dir / "pathtrace.exr").string(), ptSnap_.final);  // the live path trace, as accumulated
+            std::ofstream((dir / "pathtrace.json").string())
+                << nlohmann::json{{"samples", ptSnap_.samples}, {"width", ptSnap_.final.width}, {"height", ptSnap_.final.height},
+                                  {"figures", ptFigures_}}.dump(2) << "\n";
+        }
         // The renderer's camera exactly (`render/reference/bench --camera-file` read it), the render size, and the
         // orbit state so that `view --camera-file` resumes the same navigation.
         nlohmann::json cam = cameraToJson(renderer_->camera());

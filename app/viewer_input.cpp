@@ -128,6 +128,12 @@ void Viewer::updateFly(double dt) {
 void Viewer::applyScriptPointer() {
     if (!script_.active()) return;
     ImGuiIO& io = ImGui::GetIO();
+    if (!uiDrag_.empty()) {
+        scriptPointerSet_ = true;
+        scriptPointerAt_ = uiDrag_.front().first;
+        scriptButtons_[0] = uiDrag_.front().second;
+        uiDrag_.pop_front();
+    }
     io.MousePos = scriptPointerSet_ ? ImVec2(float(scriptPointerAt_.x), float(scriptPointerAt_.y)) : ImVec2(-FLT_MAX, -FLT_MAX);
     for (int i = 0; i < 3; ++i) io.MouseDown[i] = scriptButtons_[i];
     if (scriptWheel_ != 0.0) {

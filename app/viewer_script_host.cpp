@@ -15,6 +15,14 @@ void Viewer::scriptKey(int key, int mods) {
 }
 
 void Viewer::scriptDrag(int button, glm::dvec2 from, glm::dvec2 to, int mods) {
+    if (!inViewport(from.x, from.y)) {  // over a window: the UI sees press, moves and release on successive frames
+        if (button != GLFW_MOUSE_BUTTON_LEFT) throw std::runtime_error("a drag over a window must use the left button");
+        uiDrag_.push_back({from, false});
+        uiDrag_.push_back({from, true});
+        for (int i = 1; i <= 8; ++i) uiDrag_.push_back({from + (to - from) * (i / 8.0), true});
+        uiDrag_.push_back({to, false});
+        return;
+    }
     onCursor(from.x, from.y, true);
     onMouseButton(button, GLFW_PRESS, mods, true);
     for (int i = 1; i <= 8; ++i) onCursor(from.x + (to.x - from.x) * i / 8.0, from.y + (to.y - from.y) * i / 8.0, true);
@@ -116,7 +124,18 @@ void Viewer::scriptDumpFigures(const std::string& path) {
         << inspector_.stats.negative << " texels " << inspector_.stats.texels << " vectors " << inspector_.stats.vectors
         << " mean_length " << inspector_.stats.meanLength << "\n";
     out << "pathtrace: " << (view_.pathTrace == ui::PathTraceMode::Off ? std::string("off") : pathTraceFiguresLine()) << "\n";
-    out << "pathtrace_samples: " << ptSnap_.samples << "\n";
+    out << "pathtrace_samples: " << ptSnap_.samples << " generation " << ptSnap_.generation << " size " << ptSnap_.final.width
+        << "x" << ptSnap_.final.height << "\n";
+    out << "inspector_zoom: " << inspector_.zoom << "\n";
+    const BufferSource ia = source(inspector_.a, inspector_.level);
+    out << "inspector_buffer: " << ia.levelWidth() << " " << ia.levelHeight() << "\n";
+    const auto& r = inspector_.imageRect;
+    const auto& b = inspector_.statsButtonRect;
+    out << "inspector_image: " << r.x << " " << r.y << " " << r.z << " " << r.w << "\n";
+    out << "stats_button: " << b.x << " " << b.y << " " << b.z << " " << b.w << "\n";
+    out << "stats_mean: " << inspector_.stats.mean[0] << " " << inspector_.stats.mean[1] << " " << inspector_.stats.mean[2] << "\n";
+    out << "inspector_mode: " << int(inspector_.params.mode) << " channel " << int(inspector_.params.channel) << " range "
+        << inspector_.params.useRange << " " << inspector_.params.rangeMin << " " << inspector_.params.rangeMax << "\n";
     out << "layout: viewport " << vpX0_ << " " << vpX1_ << " inspector " << inspX0_ << " " << inspX1_ << " split "
         << view_.inspectorSplit << "\n";
     if (!out) throw std::runtime_error("cannot write " + path);

@@ -9,6 +9,9 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <map>
+#include <vector>
+#include <cmath>
 #include <sstream>
 #include <string>
 
@@ -239,6 +242,114 @@ TEST_F(Viewer, StateIsRestoredAndABrokenStateFileIsIgnored) {
     ViewerRun third = view("wait 1\n", "", false);
     EXPECT_EQ(third.rc, 0) << third.log;
     EXPECT_NE(third.log.find("ignoring the state file"), std::string::npos) << third.log;
+}
+
+}  // namespace
+
+// ---- viewer, round two (issue 12) ---------------------------------------------------------------------------
+
+namespace {
+
+std::string readText(const std::string& path) {
+    std::ifstream in(path);
+    return std::string((std::istreambuf_iterator<char>(in)), {});
+}
+
+// "key: rest" lines of a dump_figures file.
+std::map<std::string, std::string> readDump(const std::string& path) {
+    std::map<std::string, std::string> m;
+    std::istringstream in(readText(path));
+    std::string line, last;
+    while (std::getline(in, line)) {
+        const size_t c = line.find(": ");
+        if (c != std::string::npos && line.find(' ') > c) { last = line.substr(0, c); m[last] = line.substr(c + 2); }
+        else if (!last.empty()) m[last] += "\n" + line;  // the readout spans lines
+    }
+    return m;
+}
+
+std::vector<double> numbers(const std::string& s) {
+    std::vector<double> v;
+    std::istringstream in(s);
+    std::string tok;
+    while (in >> tok) {
+        char* end = nullptr;
+        const double d = std::strtod(tok.c_str(), &end);
+        if (end != tok.c_str()) v.push_back(d);
+    }
+    return v;
+}
+
+// The number right after `label` in text (e.g. "ratio of means " -> 0.98); NaN if absent.
+double numberAfter(const std::string& text, const std::string& label) {
+    const size_t i = text.find(label);
+    if (i == std::string::npos) return std::nan("");
+    return std::strtod(text.c_str() + i + label.size(), nullptr);
+}
+
+int runCommand(const std::string& cmd, std::string* log = nullptr) {
+    const std::string logPath = fs::temp_directory_path() / ("deepgi_cmd_" + std::to_string(::getpid()) + ".log");
+    const int status = std::system((cmd + " > '" + logPath + "' 2>&1").c_str());
+    if (log) *log = readText(logPath);
+    fs::remove(logPath);
+    return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+deepgi::FloatImage constantImage(int w, int h, float v) {
+    return deepgi::FloatImage{w, h, 3, std::vector<float>(size_t(w) * h * 3, v)};
+}
+
+// Larger windows for the inspector tests (the inspector takes half the width beside the viewport).
+const char* kBig = "--size 720x405";
+const int kBigW = 720, kBigH = 405;
+
+class ViewerRound2 : public Viewer {
+protected:
+    // Runs with a custom window size (the base's `view` fixes kW x kH).
+    ViewerRun viewAt(const std::string& script, const std::string& extra, bool fresh = true, const std::string& env = "") {
+        std::ofstream(path("script.txt")) << script;
+        const std::string log = path("log.txt");
+        std::ostringstream cmd;
+        cmd << "cd '" << dir_.string() << "' && " << env << " XDG_CONFIG_HOME='" << path("config")
+            << "' xvfb-run -a -s '-screen 0 1280x720x24' '" << DEEPGI_BINARY << "' view " << (fresh ? "--fresh " : "")
+            << "--script '" << path("script.txt") << "' " << extra << " '" << DEEPGI_ASSET_DIR
+            << "/cornell_box/cornell_box.gltf' > '" << log << "' 2>&1";
+        ViewerRun r;
+        const int status = std::system(cmd.str().c_str());
+        r.rc = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+        r.log = readText(log);
+        return r;
+    }
+};
+
+TEST_F(ViewerRound2, EveryFailingVerbNamesItsLineAndWhy) {
+    struct Case { std::string script, expected; };
+    const std::vector<Case> parse = {
+        {"wait 1\nwait abc\n", "script.txt:2: wait: 'abc' is not an integer"},
+        {"click 10\n", "script.txt:1: wrong number of arguments for 'click'"},
+        {"key N\nkey N super\n", "script.txt:2: key: modifier must be shift, ctrl or alt, got 'super'"},
+        {"scroll 1 20\n", "script.txt:1: scroll takes N, or N X Y"},
+        {"resize 10x10\n", "script.txt:1: resize expects WxH"},
+        {"compare sideways\n", "script.txt:1: compare mode must be a, b, wipe, diff or relative"},
+    };
+    for (const auto& c : parse) {
+        ViewerRun r = view(c.script);
+        EXPECT_EQ(r.rc, 1) << c.script;
+        EXPECT_NE(r.log.find(c.expected), std::string::npos) << c.script << "\n" << r.log;
+    }
+    // Failures while running (they need a frame): the line and the reason, then exit 1.
+    ViewerRun r = view("wait 1\ninspect \"Normal 1\"\ncompare diff\n");
+    EXPECT_EQ(r.rc, 1);
+    EXPECT_NE(r.log.find("script.txt:3: compare: compare needs a B image"), std::string::npos) << r.log;
+    r = view("wait 1\n\ninspect \"No Such Buffer\"\n");
+    EXPECT_EQ(r.rc, 1);
+    EXPECT_NE(r.log.find("script.txt:3: inspect: no buffer named 'No Such Buffer'"), std::string::npos) << r.log;
+}
+
+TEST_F(ViewerRound2, ConvergeIsValidAsTheFirstLine) {
+    ViewerRun r = view("converge 3\ninspect \"Normal 1\"\nwait 1\ndump_figures f.txt\n");
+    ASSERT_EQ(r.rc, 0) << r.log;
+    EXPECT_EQ(readDump(path("f.txt"))["inspector"], "Normal 1");
 }
 
 }  // namespace

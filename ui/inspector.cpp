@@ -195,7 +195,7 @@ void drawInspector(InspectorState& s, ViewerServices& services, double now, ImVe
     // Image area: leave room for the description, figures, legend and statistics lines.
     const float infoHeight = ImGui::GetTextLineHeightWithSpacing() * 9.5f;
     ImVec2 area = ImGui::GetContentRegionAvail();
-    area.y -= infoHeight;
+    area.y = std::max(area.y - infoHeight, area.y * 0.6f);  // the image keeps most of a short pane; the lines scroll
     area.x = std::max(area.x, 32.0f);
     area.y = std::max(area.y, 32.0f);
     if (!a.valid()) {
@@ -222,6 +222,7 @@ void drawInspector(InspectorState& s, ViewerServices& services, double now, ImVe
     const ImVec2 p0 = ImGui::GetCursorScreenPos();
     ImGui::InvisibleButton("##image", area, ImGuiButtonFlags_MouseButtonLeft | ImGuiButtonFlags_MouseButtonMiddle);
     const bool hovered = ImGui::IsItemHovered();
+    s.imageRect = glm::vec4(p0.x, p0.y, p0.x + area.x, p0.y + area.y);
     ImGuiIO& io = ImGui::GetIO();
     const glm::vec2 areaSize(area.x, area.y);
     auto texelAt = [&](ImVec2 m) {
@@ -355,6 +356,7 @@ void drawInspector(InspectorState& s, ViewerServices& services, double now, ImVe
     ImGui::Text("%s: %d x %d, mip %d of %d", s.a.c_str(), a.levelWidth(), a.levelHeight(), a.level, a.levels);
     ImGui::SameLine();
     const bool statsNow = ImGui::SmallButton("min/mean/max");
+    s.statsButtonRect = glm::vec4(ImGui::GetItemRectMin().x, ImGui::GetItemRectMin().y, ImGui::GetItemRectMax().x, ImGui::GetItemRectMax().y);
     ImGui::SameLine();
     ImGui::Checkbox("every second", &s.autoStats);
     if (statsNow || s.statsOf != s.a + "#" + std::to_string(s.level) || (s.autoStats && now - s.lastStatsTime > 1.0)) {

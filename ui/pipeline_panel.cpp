@@ -21,8 +21,12 @@ PipelineActions drawPipelinePanel(const PipelineGraph& g, PipelinePanelState& st
         auto textures = [&](const char* what, const std::vector<std::string>& names) {
             ImGui::Indent();
             ImGui::TextDisabled("%s", what);
+            const float right = ImGui::GetWindowPos().x + ImGui::GetWindowContentRegionMax().x;
             for (const auto& t : names) {
-                ImGui::SameLine();
+                // Wrap onto the next line rather than run off the panel.
+                const float w = ImGui::CalcTextSize(t.c_str()).x + ImGui::GetStyle().FramePadding.x * 2.0f;
+                if (ImGui::GetItemRectMax().x + ImGui::GetStyle().ItemSpacing.x + w <= right) ImGui::SameLine();
+                else ImGui::Dummy(ImVec2(ImGui::CalcTextSize("writes").x, 0.0f)), ImGui::SameLine();
                 if (ImGui::SmallButton(t.c_str())) act.showTexture = t;
                 if (ImGui::IsItemHovered()) ImGui::SetTooltip("show '%s' in the viewport and the inspector", t.c_str());
             }

@@ -123,25 +123,15 @@ ProfilerActions drawProfilerPanel(ProfilerState& p, const MemoryReport& mem, int
     ImGui::TextDisabled("%s", p.timingNote.c_str());
     ImGui::TextDisabled("renderer (sum of passes), last %d frames", ProfilerState::kHistory);
     drawHistoryPlot("frame", p.frameMs, 64.0f, "ms");
-    // The name column is as wide as the longest name: names are never cut.
-    float nameW = ImGui::CalcTextSize("pass").x;
-    for (const auto& n : p.passOrder) nameW = std::max(nameW, ImGui::CalcTextSize(n.c_str()).x);
-    if (ImGui::BeginTable("passes", 3, ImGuiTableFlags_RowBg | ImGuiTableFlags_BordersInnerH)) {
-        ImGui::TableSetupColumn("pass", ImGuiTableColumnFlags_WidthFixed, nameW + 4.0f);
-        ImGui::TableSetupColumn("ms", ImGuiTableColumnFlags_WidthFixed, ImGui::CalcTextSize("0000.00").x);
-        ImGui::TableSetupColumn("history", ImGuiTableColumnFlags_WidthStretch);
-        ImGui::TableHeadersRow();
-        for (const auto& name : p.passOrder) {
-            const auto& d = p.passMs.at(name);
-            ImGui::TableNextRow();
-            ImGui::TableNextColumn();
-            ImGui::TextUnformatted(name.c_str());
-            ImGui::TableNextColumn();
-            ImGui::Text("%7.2f", double(mean(d, 10)));
-            ImGui::TableNextColumn();
-            drawHistoryPlot(name.c_str(), d, 2.0f * ImGui::GetTextLineHeightWithSpacing(), "ms");
-        }
-        ImGui::EndTable();
+    // One row per pass: its whole name and mean time, then its own plot across the panel (names are never cut).
+    for (const auto& name : p.passOrder) {
+        const auto& d = p.passMs.at(name);
+        ImGui::TextUnformatted(name.c_str());
+        char ms[32];
+        std::snprintf(ms, sizeof(ms), "%.2f ms", double(mean(d, 10)));
+        ImGui::SameLine(std::max(ImGui::GetContentRegionMax().x - ImGui::CalcTextSize(ms).x, ImGui::GetCursorPosX() + 8.0f));
+        ImGui::TextUnformatted(ms);
+        drawHistoryPlot(name.c_str(), d, 34.0f, "ms");
     }
     ImGui::SetNextItemWidth(-110.0f);
     ImGui::InputText("##csv", p.csvPath, sizeof(p.csvPath));

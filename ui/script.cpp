@@ -149,6 +149,7 @@ void ScriptRunner::step(ScriptHost& host, double now) {
         releasePending_ = false;
         return;
     }
+    if (host.scriptBusy()) return;
     if (waitFrames_ > 0) { --waitFrames_; return; }
     if (now < sleepUntil_) return;
     // Nothing is registered before the first frame: every verb waits for it (so `converge` or `inspect` may come first).

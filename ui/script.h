@@ -3,7 +3,8 @@
 //   wait N                      let N frames render
 //   sleep S                     keep rendering for S seconds (e.g. past the twice-a-second shader poll)
 //   key NAME [shift] [ctrl] [alt]   press and release a key (GLFW names: KP_1, F12, HOME, N, GRAVE_ACCENT, ...)
-//   drag BUTTON X0 Y0 X1 Y1 [shift] [ctrl] [alt]   BUTTON = left|middle|right, window coordinates (the viewport)
+//   drag BUTTON X0 Y0 X1 Y1 [shift] [ctrl] [alt]   BUTTON = left|middle|right, window coordinates; from the
+//                               viewport it navigates, from any window (the divider, a slider) the UI gets it
 //   hover X Y                   move the pointer there (over any window: tooltips, the inspector's readout)
 //   click X Y [left|middle|right]   press there this frame, release the next (any window: buttons, tabs, lists)
 //   scroll N [X Y]              wheel notches (> 0 up) at X Y (default: the viewport centre), given to the window
@@ -51,6 +52,7 @@ class ScriptHost {
 public:
     virtual ~ScriptHost() = default;
     virtual bool scriptReady() = 0;  // false until the first frame has rendered (buffers exist from then on)
+    virtual bool scriptBusy() = 0;   // an action spanning frames (a drag over a window) is still being played
     virtual void scriptKey(int glfwKey, int glfwMods) = 0;
     virtual void scriptDrag(int glfwButton, glm::dvec2 from, glm::dvec2 to, int glfwMods) = 0;
     // Pointer for this frame's UI (hover/click): position, and which buttons are down.

@@ -209,6 +209,7 @@ struct InspectorState {
     std::string refMessage;
     std::string figures;             // the error figures line of the current A/B (empty: none)
     std::string readout;             // the last texel readout under the pointer (also for scripts)
+    glm::vec4 imageRect{0.0f}, statsButtonRect{0.0f};  // x0 y0 x1 y1 in window units, last frame (for scripts)
 };
 // The inspector as a fixed pane at pos/size (window units).
 void drawInspector(InspectorState& s, ViewerServices& services, double now, ImVec2 pos, ImVec2 size);
