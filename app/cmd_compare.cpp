@@ -31,7 +31,7 @@ int runCompare(const CompareArgs& a) {
     std::printf("max |dL| %.6g at (%d, %d)\n", f.maxAbs, f.maxX, f.maxY);
     std::printf("mean L %.6g (A), %.6g (B)\n", f.meanTest, f.meanRef);
     if (!a.out.empty()) {
-        writeHeatMapPng(a.out, relativeError(t, r), a.scale, "relative error |LA - LB| / (LB + 1% of mean LB)");
+        writeHeatMapPng(a.out, relativeError(t, r), a.scale, "relative error of luminance, A vs B");
         std::printf("wrote %s (relative error, 0 .. %g%%)\n", a.out.c_str(), double(a.scale) * 100.0);
     }
     return 0;

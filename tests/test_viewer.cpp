@@ -3,6 +3,7 @@
 #include "renderer/core/image_io.h"
 
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -350,6 +351,106 @@ TEST_F(ViewerRound2, ConvergeIsValidAsTheFirstLine) {
     ViewerRun r = view("converge 3\ninspect \"Normal 1\"\nwait 1\ndump_figures f.txt\n");
     ASSERT_EQ(r.rc, 0) << r.log;
     EXPECT_EQ(readDump(path("f.txt"))["inspector"], "Normal 1");
+}
+
+}  // namespace
+
+namespace {
+
+// F12's folder under shots/ (exactly one).
+fs::path onlyCapture(const fs::path& shots) {
+    std::vector<fs::path> dirs;
+    if (fs::exists(shots))
+        for (const auto& d : fs::directory_iterator(shots)) dirs.push_back(d.path());
+    EXPECT_EQ(dirs.size(), 1u) << shots;
+    return dirs.empty() ? fs::path() : dirs.front();
+}
+
+// A viewer capture re-rendered headless from its camera.json and settings.json is the same image: both are llvmpipe
+// running the same shaders on the same camera (bit-identical matrices), so they may differ only by rasterisation
+// rounding between the GLX and OSMesa contexts. Tolerance: mean |difference| under 0.5/255 and 99.5 % of the pixels
+// within 2/255 per channel.
+TEST_F(ViewerRound2, CaptureReRendersHeadlessWithTheSameImage) {
+    ViewerRun r = view(std::string(kSetup) + "drag middle 240 150 270 160\nwait 1\ncapture\nwait 1\n",
+                       "--screenshots '" + path("shots") + "'");
+    ASSERT_EQ(r.rc, 0) << r.log;
+    const fs::path cap = onlyCapture(path("shots"));
+    ASSERT_TRUE(fs::exists(cap / "camera.json")) << r.log;
+    EXPECT_NE(r.log.find("deepgi view: screenshot " + fs::absolute(cap).string()), std::string::npos) << r.log;
+    const nlohmann::json cam = nlohmann::json::parse(readText((cap / "camera.json").string()));
+    const int w = cam.at("width"), h = cam.at("height");
+    std::string log;
+    const std::string render = std::string("'") + DEEPGI_BINARY + "' render '" + DEEPGI_ASSET_DIR + "/cornell_box/cornell_box.gltf' --camera-file '" +
+                               (cap / "camera.json").string() + "' --settings '" + (cap / "settings.json").string() + "' --size " +
+                               std::to_string(w) + "x" + std::to_string(h) + " --frames 3 --out '" + path("rerender") + "'";
+    ASSERT_EQ(runCommand(render, &log), 0) << log;
+    const deepgi::FloatImage a = deepgi::readImage((cap / "final.png").string()), b = deepgi::readImage(path("rerender/final.png"));
+    ASSERT_EQ(a.width, b.width);
+    ASSERT_EQ(a.height, b.height);
+    double sum = 0.0;
+    size_t within = 0, n = 0;
+    for (int y = 0; y < a.height; ++y)
+        for (int x = 0; x < a.width; ++x, ++n) {
+            float worst = 0.0f;
+            for (int c = 0; c < 3; ++c) {
+                const float d = std::abs(a.at(x, y, c) - b.at(x, y, c));
+                sum += d;
+                worst = std::max(worst, d);
+            }
+            within += worst <= 2.0f / 255.0f;
+        }
+    const double meanDiff = sum / double(3 * n), fracWithin = double(within) / double(n);
+    std::printf("capture vs render --camera-file: mean |diff| %.5f, %.4f of pixels within 2/255\n", meanDiff, fracWithin);
+    EXPECT_LT(meanDiff, 0.5 / 255.0);
+    EXPECT_GT(fracWithin, 0.995);
+
+    // The same camera file works for reference (and rejects a broken one, naming the file and the field).
+    ASSERT_EQ(runCommand(std::string("'") + DEEPGI_BINARY + "' reference '" + DEEPGI_ASSET_DIR + "/cornell_box/cornell_box.gltf' --camera-file '" +
+                         (cap / "camera.json").string() + "' --size 32x18 --spp 1 --quiet --threads 1 --out '" + path("ref") + "'", &log), 0) << log;
+    EXPECT_TRUE(fs::exists(path("ref/final.exr")));
+    nlohmann::json bad = cam;
+    bad["yfov"] = -1.0;
+    std::ofstream(path("bad.json")) << bad.dump();
+    EXPECT_EQ(runCommand(std::string("'") + DEEPGI_BINARY + "' render --camera-file '" + path("bad.json") + "' --size 16x16 --frames 1 --out '" + path("x") + "'", &log), 1);
+    EXPECT_NE(log.find("camera file " + path("bad.json") + ": \"yfov\" must be in (0, pi) radians"), std::string::npos) << log;
+}
+
+// deepgi compare against answers worked out by hand: A = 1.1 B everywhere gives relative L1 0.1, ratio of means 1.1,
+// max |dL| 0.1 and relMSE 0.01 / (1 + 1e-4); a +-0.1 checkerboard on B gives relative L1 0.1 per pixel but 0 on
+// 4x4 block means (the checker cancels inside every block).
+TEST_F(ViewerRound2, CompareCommandFiguresAndHeatMap) {
+    const int w = 32, h = 16;
+    deepgi::writeExr(path("b.exr"), constantImage(w, h, 1.0f));
+    deepgi::writeExr(path("a.exr"), constantImage(w, h, 1.1f));
+    deepgi::FloatImage checker = constantImage(w, h, 1.0f);
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x)
+            for (int c = 0; c < 3; ++c) checker.at(x, y, c) = (x + y) % 2 ? 1.1f : 0.9f;
+    deepgi::writeExr(path("checker.exr"), checker);
+    std::string log;
+    ASSERT_EQ(runCommand(std::string("'") + DEEPGI_BINARY + "' compare '" + path("a.exr") + "' '" + path("b.exr") + "' --out '" + path("heat.png") + "'", &log), 0) << log;
+    EXPECT_NEAR(numberAfter(log, "relative L1 "), 0.1, 1e-5) << log;
+    EXPECT_NEAR(numberAfter(log, "relative L1 (4x4 blocks) "), 0.1, 1e-5) << log;
+    EXPECT_NEAR(numberAfter(log, "ratio of means "), 1.1, 1e-5) << log;
+    EXPECT_NEAR(numberAfter(log, "max |dL| "), 0.1, 1e-5) << log;
+    EXPECT_NEAR(numberAfter(log, "relMSE "), 0.01 / (1.0 + 1e-4), 1e-6) << log;
+    // Heat map: the image on top (relative error 0.1 / 1.01 of a 100 % scale), a legend strip below it.
+    const deepgi::FloatImage heat = deepgi::readImage(path("heat.png"));
+    EXPECT_GE(heat.width, w);
+    EXPECT_EQ(heat.height, h + 46);
+    double legendSpread = 0.0;
+    for (int x = 0; x < heat.width; ++x) legendSpread = std::max(legendSpread, double(std::abs(heat.at(x, h + 10, 0) - heat.at(0, h + 10, 0))));
+    EXPECT_GT(legendSpread, 0.5) << "the colour bar runs from dark to bright";
+    EXPECT_LT(heat.at(w / 2, h / 2, 0), heat.at(heat.width - 12, h + 10, 0)) << "10% error is far below the scale's top colour";
+
+    ASSERT_EQ(runCommand(std::string("'") + DEEPGI_BINARY + "' compare '" + path("checker.exr") + "' '" + path("b.exr") + "'", &log), 0) << log;
+    EXPECT_NEAR(numberAfter(log, "relative L1 "), 0.1, 1e-5) << log;
+    EXPECT_NEAR(numberAfter(log, "relative L1 (4x4 blocks) "), 0.0, 1e-6) << log;
+    EXPECT_NEAR(numberAfter(log, "ratio of means "), 1.0, 1e-6) << log;
+
+    deepgi::writeExr(path("small.exr"), constantImage(8, 8, 1.0f));
+    EXPECT_EQ(runCommand(std::string("'") + DEEPGI_BINARY + "' compare '" + path("a.exr") + "' '" + path("small.exr") + "'", &log), 1);
+    EXPECT_NE(log.find(path("a.exr") + " is 32x16 but " + path("small.exr") + " is 8x8"), std::string::npos) << log;
 }
 
 }  // namespace
