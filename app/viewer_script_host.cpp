@@ -119,7 +119,9 @@ void Viewer::scriptDumpFigures(const std::string& path) {
     std::ofstream out(path);
     out << "inspector: " << inspector_.a << (inspector_.b.empty() ? "" : " vs " + inspector_.b) << "\n";
     out << "figures: " << inspector_.figures << "\n";
-    out << "readout: " << inspector_.readout << "\n";
+    std::string readout = inspector_.readout;
+    std::replace(readout.begin(), readout.end(), '\n', '|');  // one line per key
+    out << "readout: " << readout << "\n";
     out << "stats: " << (inspector_.stats.valid ? "valid" : "none") << " empty " << inspector_.stats.empty << " negative "
         << inspector_.stats.negative << " texels " << inspector_.stats.texels << " vectors " << inspector_.stats.vectors
         << " mean_length " << inspector_.stats.meanLength << "\n";

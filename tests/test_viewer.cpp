@@ -1,5 +1,6 @@
 // deepgi view under Xvfb: scripted input, window screenshots compared by region.
 // Each test writes a script into a temp folder, runs the built binary under xvfb-run and reads the PNGs back.
+#include "renderer/core/image_compare.h"
 #include "renderer/core/image_io.h"
 
 #include <gtest/gtest.h>
@@ -451,6 +452,161 @@ TEST_F(ViewerRound2, CompareCommandFiguresAndHeatMap) {
     deepgi::writeExr(path("small.exr"), constantImage(8, 8, 1.0f));
     EXPECT_EQ(runCommand(std::string("'") + DEEPGI_BINARY + "' compare '" + path("a.exr") + "' '" + path("small.exr") + "'", &log), 1);
     EXPECT_NE(log.find(path("a.exr") + " is 32x16 but " + path("small.exr") + " is 8x8"), std::string::npos) << log;
+}
+
+}  // namespace
+
+namespace {
+
+const char* kInspectSetup =
+    "key N\n"
+    "set radiosity.temporally_vary=false\n"
+    "set radiosity.bounce_damping=1\n"
+    "set temporal.enabled=false\n"
+    "set light.shadow_map_size=256\n"
+    "wait 2\n";
+
+struct Rect {
+    double x0 = 0, y0 = 0, x1 = 0, y1 = 0;
+    double cx() const { return 0.5 * (x0 + x1); }
+    double cy() const { return 0.5 * (y0 + y1); }
+};
+Rect rectOf(const std::string& s) {
+    const auto v = numbers(s);
+    return v.size() >= 4 ? Rect{v[0], v[1], v[2], v[3]} : Rect{};
+}
+
+// Where texel (u, v) (v = 0 the top row) of the inspector's buffer is on screen, the view fitted.
+void screenOf(std::map<std::string, std::string>& d, double u, double v, double& x, double& y) {
+    const Rect r = rectOf(d["inspector_image"]);
+    const auto size = numbers(d["inspector_buffer"]);
+    const double zoom = numbers(d["inspector_zoom"]).at(0);
+    x = r.cx() + (u - 0.5) * size.at(0) * zoom;
+    y = r.cy() + (v - 0.5) * size.at(1) * zoom;
+}
+
+// The displayed buffer's rectangle inside the inspector's image area (fitted: letterboxed), 2 px inside its edges.
+Region bufferRegion(std::map<std::string, std::string>& d) {
+    const auto size = numbers(d["inspector_buffer"]);
+    const double zoom = numbers(d["inspector_zoom"]).at(0);
+    const Rect ir = rectOf(d["inspector_image"]);
+    return Region{int(ir.cx() - 0.5 * size.at(0) * zoom) + 2, int(ir.cy() - 0.5 * size.at(1) * zoom) + 2,
+                  int(ir.cx() + 0.5 * size.at(0) * zoom) - 2, int(ir.cy() + 0.5 * size.at(1) * zoom) - 2};
+}
+
+// The inspector: the readout under a hovered texel, statistics from a clicked button (normals as unit vectors,
+// empty layer-2 texels left out and hatched), the shadow map shown as grey depth, the registry's description, and
+// error views of the frame against a reference that is the same view at twice the radiance (answer: ratio of
+// means 0.5, relative L1 0.5, relative error 0.5 everywhere but black pixels).
+TEST_F(ViewerRound2, InspectorReadoutStatsHatchDepthAndErrorViews) {
+    // Run 1: the layout of the inspector, and a capture of this view for the reference.
+    ViewerRun r = viewAt(std::string(kInspectSetup) + "inspect \"Normal 2\"\nwait 2\ndump_figures layout.txt\ncapture\nwait 1\n",
+                         std::string(kBig) + " --screenshots '" + path("shots") + "'");
+    ASSERT_EQ(r.rc, 0) << r.log;
+    auto layout = readDump(path("layout.txt"));
+    const fs::path cap = onlyCapture(path("shots"));
+    std::string log;
+    ASSERT_EQ(runCommand(std::string("'") + DEEPGI_BINARY + "' render '" + DEEPGI_ASSET_DIR + "/cornell_box/cornell_box.gltf' --camera-file '" +
+                         (cap / "camera.json").string() + "' --settings '" + (cap / "settings.json").string() + "' --size " +
+                         std::to_string(int(nlohmann::json::parse(readText((cap / "camera.json").string())).at("width"))) + "x" +
+                         std::to_string(int(nlohmann::json::parse(readText((cap / "camera.json").string())).at("height"))) +
+                         " --frames 3 --out '" + path("frame") + "'", &log), 0) << log;
+    deepgi::FloatImage twice = deepgi::readImage(path("frame/final.exr"));
+    for (auto& v : twice.pixels) v *= 2.0f;
+    deepgi::writeExr(path("twice.exr"), twice);
+
+    const Rect stats = rectOf(layout["stats_button"]);
+    double wx = 0, wy = 0;
+    screenOf(layout, 0.62, 0.3, wx, wy);  // the back wall, right of the tall box, below the light
+    char buf[1024];
+    std::snprintf(buf, sizeof(buf),
+                  "inspect \"Normal 2\"\nwait 2\nclick %.0f %.0f\nwait 2\ndump_figures n2.txt\nscreenshot n2.png\n"
+                  "inspect \"Normal 1\"\nwait 2\nhover %.0f %.0f\nwait 2\ndump_figures n1.txt\nhover -100 -100\n"
+                  "inspect \"Shadow Map 1\"\nwait 3\ndump_figures sm.txt\nscreenshot sm.png\n"
+                  "reference \"%s\"\ninspect \"Final Radiance\" \"Reference (EXR)\"\ncompare relative\nwait 3\n"
+                  "dump_figures rel.txt\nscreenshot rel.png\ncompare diff\nwait 2\nscreenshot diff.png\n",
+                  stats.cx(), stats.cy(), wx, wy, path("twice.exr").c_str());
+    r = viewAt(std::string(kInspectSetup) + buf, kBig);
+    ASSERT_EQ(r.rc, 0) << r.log;
+
+    // Normal 2: statistics over unit vectors, empty texels counted apart and hatched on screen.
+    auto n2 = readDump(path("n2.txt"));
+    ASSERT_NE(n2["stats"].find("valid"), std::string::npos) << "the click on min/mean/max at " << stats.cx() << "," << stats.cy()
+                                                            << " missed: " << n2["stats_button"];
+    const auto st = numbers(n2["stats"]);  // empty, negative, texels, vectors, mean length
+    ASSERT_EQ(st.size(), 5u) << n2["stats"];
+    const double empty = st[0], negative = st[1], texels = st[2], vectors = st[3], meanLength = st[4];
+    EXPECT_GT(empty, 0.1 * texels) << "layer 2 of the Cornell box has no surface over much of the view";
+    EXPECT_EQ(negative, 0.0) << "normals are not flagged for negative components";
+    EXPECT_EQ(vectors, 1.0);
+    EXPECT_NEAR(meanLength, 1.0, 0.01) << "decoded normals are unit vectors";
+    EXPECT_NE(n2["inspector"].find("Normal 2"), std::string::npos);
+    {
+        const deepgi::FloatImage img = deepgi::readImage(path("n2.png"));
+        const Region br = bufferRegion(n2);
+        const double hatch = fractionNear(img, 120 / 255.f, 120 / 255.f, 120 / 255.f, 0.02f, br) +
+                             fractionNear(img, 60 / 255.f, 60 / 255.f, 60 / 255.f, 0.02f, br);
+        std::printf("Normal 2: %.0f of %.0f texels empty (%.3f); hatch covers %.3f of the image\n", empty, texels, empty / texels, hatch);
+        EXPECT_NEAR(hatch, empty / texels, 0.08) << "the hatch covers the empty texels";
+    }
+    // Normal 1 under the pointer: the back wall faces +Z.
+    auto n1 = readDump(path("n1.txt"));
+    const size_t np = n1["readout"].find("normal: (");
+    ASSERT_NE(np, std::string::npos) << n1["readout"];
+    const auto nv = numbers(n1["readout"].substr(np + 9));
+    ASSERT_GE(nv.size(), 3u);
+    EXPECT_GT(nv[2], 0.999) << n1["readout"];
+    EXPECT_NE(n1["readout"].find("texel ("), std::string::npos);
+    // The shadow map: grey light-space depth over its own range, not raw red.
+    auto sm = readDump(path("sm.txt"));
+    const auto mode = numbers(sm["inspector_mode"]);  // mode, channel, range on, min, max
+    ASSERT_EQ(mode.size(), 5u) << sm["inspector_mode"];
+    EXPECT_EQ(mode[0], 1.0) << "raw";
+    EXPECT_EQ(mode[1], 1.0) << "the R channel as grey";
+    EXPECT_EQ(mode[2], 1.0) << "range on";
+    EXPECT_LT(mode[3], mode[4]);
+    {
+        const deepgi::FloatImage img = deepgi::readImage(path("sm.png"));
+        const Rect ir = rectOf(sm["inspector_image"]);
+        size_t grey = 0, n = 0;
+        float lo = 1.0f, hi = 0.0f;
+        for (int y = int(ir.y0) + 4; y < int(ir.y1) - 4; ++y)
+            for (int x = int(ir.x0) + 4; x < int(ir.x1) - 4; ++x, ++n) {
+                grey += std::abs(img.at(x, y, 0) - img.at(x, y, 1)) < 0.03f && std::abs(img.at(x, y, 1) - img.at(x, y, 2)) < 0.03f;
+                lo = std::min(lo, img.at(x, y, 0));
+                hi = std::max(hi, img.at(x, y, 0));
+            }
+        EXPECT_GT(double(grey) / double(n), 0.97) << "shadow depth is grey";
+        EXPECT_GT(hi - lo, 0.3f) << "and spans the range";
+    }
+    // Error views against the twice-as-bright reference.
+    auto rel = readDump(path("rel.txt"));
+    std::printf("figures: %s\n", rel["figures"].c_str());
+    EXPECT_NEAR(numberAfter(rel["figures"], "ratio of means "), 0.5, 0.005) << rel["figures"];
+    EXPECT_NEAR(numberAfter(rel["figures"], "rel L1 (4x4) ") / 100.0, 0.5, 0.01) << rel["figures"];
+    {
+        const deepgi::FloatImage img = deepgi::readImage(path("rel.png"));
+        const Rect ir = rectOf(rel["inspector_image"]);
+        const auto pal = deepgi::heatPalette(256);
+        const auto& c = pal[size_t(std::lround(0.5 / (1.0 + 0.01) * 255.0))];  // |L - 2L| / (2L + 1% of mean 2L), scale 100%
+        const double at = fractionNear(img, c[0], c[1], c[2], 0.06f, bufferRegion(rel));
+        // Expected: every pixel bright enough that eps (1% of the mean) is under 5% of it, i.e. error 0.476 .. 0.5.
+        const std::vector<float> l = deepgi::luminance(twice);
+        double mean = 0.0;
+        for (float v : l) mean += v / double(l.size());
+        size_t bright = 0;
+        for (float v : l) bright += v > 0.2 * mean;
+        const double expected = double(bright) / double(l.size());
+        std::printf("relative view: %.3f of the image in the colour of 50%%, %.3f of the pixels bright enough\n", at, expected);
+        EXPECT_GT(at, 0.9 * expected);
+        // The legend under the image runs through the palette.
+        double spread = 0.0;
+        for (int y = int(ir.y1); y < std::min(int(ir.y1) + 80, img.height); ++y)
+            for (int x = int(ir.x0); x < int(ir.x1); ++x) spread = std::max(spread, double(img.at(x, y, 0) + img.at(x, y, 1)));
+        EXPECT_GT(spread, 1.5) << "the bright end of the legend is drawn under the image";
+        const deepgi::FloatImage diff = deepgi::readImage(path("diff.png"));
+        EXPECT_GT(meanAbsDiff(img, diff, Region{int(ir.x0), int(ir.y0), int(ir.x1), int(ir.y1)}), 0.05) << "|A - B| is another image";
+    }
 }
 
 }  // namespace

@@ -128,7 +128,11 @@ std::vector<std::array<float, 3>> heatPalette(int n) {
     }
     OIIO::ImageBuf rgb = OIIO::ImageBufAlgo::color_map(ramp, 0, "inferno");
     std::vector<std::array<float, 3>> out(static_cast<size_t>(n));
-    for (int x = 0; x < n; ++x) rgb.getpixel(x, 0, out[size_t(x)].data(), 3);
+    // OIIO's maps are linear values: encode them, so that the colours on screen and in PNGs are inferno's own.
+    for (int x = 0; x < n; ++x) {
+        rgb.getpixel(x, 0, out[size_t(x)].data(), 3);
+        for (float& v : out[size_t(x)]) v = linearToSrgb(v);
+    }
     return out;
 }
 

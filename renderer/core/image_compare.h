@@ -39,9 +39,9 @@ ImageFigures compareImages(const FloatImage& test, const FloatImage& ref, const 
 FloatImage absDifference(const FloatImage& a, const FloatImage& b);
 FloatImage relativeError(const FloatImage& test, const FloatImage& ref);
 
-// The false-colour scale of error views (OpenImageIO's "inferno"): n colours from 0 to 1.
+// The false-colour scale of error views (OpenImageIO's "inferno"): n display (sRGB-encoded) colours from 0 to 1.
 std::vector<std::array<float, 3>> heatPalette(int n = 256);
-// Maps a one-channel image through the palette, 0 .. scaleMax (values above are the last colour), RGB 0..1.
+// Maps a one-channel image through the palette, 0 .. scaleMax (values above are the last colour): display RGB 0..1.
 FloatImage heatMap(const FloatImage& oneChannel, float scaleMax);
 // Writes the heat map as a PNG with a legend strip below it (colour bar and its labelled ticks, drawn with
 // OpenImageIO), titled `title`. Throws std::runtime_error naming the file.
