@@ -138,6 +138,10 @@ void Viewer::scriptDumpFigures(const std::string& path) {
     out << "stats_mean: " << inspector_.stats.mean[0] << " " << inspector_.stats.mean[1] << " " << inspector_.stats.mean[2] << "\n";
     out << "inspector_mode: " << int(inspector_.params.mode) << " channel " << int(inspector_.params.channel) << " range "
         << inspector_.params.useRange << " " << inspector_.params.rangeMin << " " << inspector_.params.rangeMax << "\n";
+    out << "viewport_buffer: " << view_.buffer << "\n";
+    out << "pipeline_selected: " << pipelinePanel_.selectedPass << "\n";
+    for (const auto& [name, rc] : pipelinePanel_.itemRects)
+        out << "pipeline " << name << ": " << rc.x << " " << rc.y << " " << rc.z << " " << rc.w << "\n";
     out << "layout: viewport " << vpX0_ << " " << vpX1_ << " inspector " << inspX0_ << " " << inspX1_ << " split "
         << view_.inspectorSplit << "\n";
     if (!out) throw std::runtime_error("cannot write " + path);

@@ -8,6 +8,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -264,8 +265,8 @@ std::map<std::string, std::string> readDump(const std::string& path) {
     std::string line, last;
     while (std::getline(in, line)) {
         const size_t c = line.find(": ");
-        if (c != std::string::npos && line.find(' ') > c) { last = line.substr(0, c); m[last] = line.substr(c + 2); }
-        else if (!last.empty()) m[last] += "\n" + line;  // the readout spans lines
+        if (c != std::string::npos) { last = line.substr(0, c); m[last] = line.substr(c + 2); }
+        else if (!last.empty()) m[last] += "\n" + line;
     }
     return m;
 }
@@ -607,6 +608,126 @@ TEST_F(ViewerRound2, InspectorReadoutStatsHatchDepthAndErrorViews) {
         const deepgi::FloatImage diff = deepgi::readImage(path("diff.png"));
         EXPECT_GT(meanAbsDiff(img, diff, Region{int(ir.x0), int(ir.y0), int(ir.x1), int(ir.y1)}), 0.05) << "|A - B| is another image";
     }
+}
+
+}  // namespace
+
+namespace {
+
+// The profiler: its plots draw (the plot colour covers many pixels of the panel after 25 frames), and its CSV has a
+// row per frame whose renderer time is the sum of the pass columns.
+TEST_F(ViewerRound2, ProfilerPlotsDrawAndExportCsv) {
+    ViewerRun r = view("panel profiler\nwait 25\nscreenshot prof.png\nprofiler_csv prof.csv\n");
+    ASSERT_EQ(r.rc, 0) << r.log;
+    const deepgi::FloatImage img = shot("prof.png");
+    const double plot = fractionNear(img, 120 / 255.f, 200 / 255.f, 1.0f, 0.12f, Region{kW - 280, 0, kW, kH});
+    std::printf("plot colour covers %.4f of the sidebar\n", plot);
+    EXPECT_GT(plot * 280 * kH, 150.0) << "the history plots are drawn";
+    std::istringstream csv(readText(path("prof.csv")));
+    std::string header, line;
+    std::getline(csv, header);
+    for (const char* pass : {"\"Deep G-buffer ms\"", "\"Radiosity gather ms\"", "\"Composite ms\""})
+        EXPECT_NE(header.find(pass), std::string::npos) << header;
+    const size_t columns = size_t(std::count(header.begin(), header.end(), ',')) + 1;
+    int rows = 0;
+    while (std::getline(csv, line)) {
+        ++rows;
+        std::vector<double> v;
+        std::stringstream ls(line);
+        std::string cell;
+        while (std::getline(ls, cell, ',')) v.push_back(std::stod(cell));
+        ASSERT_EQ(v.size(), columns) << line;
+        double sum = 0.0;
+        for (size_t i = 3; i < v.size(); ++i) sum += v[i];
+        EXPECT_NEAR(v[2], sum, 1e-3 * std::max(1.0, sum)) << line;
+    }
+    EXPECT_GE(rows, 25);
+}
+
+// The split layout: the inspector opens beside the viewport, the divider drags, and its place is remembered.
+TEST_F(ViewerRound2, InspectorBesideTheViewportWithARememberedDivider) {
+    ViewerRun r = view("key N\nkey I\nwait 2\ndump_figures a.txt\ndrag left 243 150 343 150\nwait 2\ndump_figures b.txt\n", "", false);
+    ASSERT_EQ(r.rc, 0) << r.log;
+    const auto a = numbers(readDump(path("a.txt"))["layout"]);  // viewport x0 x1, inspector x0 x1, split
+    ASSERT_EQ(a.size(), 5u);
+    EXPECT_EQ(a[1], kW * 0.5) << "the viewport takes half the window";
+    EXPECT_EQ(a[2], kW * 0.5 + 6) << "the inspector starts right of the divider";
+    EXPECT_EQ(a[3], kW);
+    const auto b = numbers(readDump(path("b.txt"))["layout"]);
+    ASSERT_EQ(b.size(), 5u);
+    EXPECT_NEAR(b[4], 0.5 + 100.0 / kW, 0.01) << "a 100 px drag of the divider";
+    EXPECT_NEAR(b[1], kW * b[4], 1.0);
+    ViewerRun again = view("wait 2\ndump_figures c.txt\n", "", false);  // the sidebar stays hidden: remembered too
+    ASSERT_EQ(again.rc, 0) << again.log;
+    const auto c = numbers(readDump(path("c.txt"))["layout"]);
+    ASSERT_EQ(c.size(), 5u);
+    EXPECT_NEAR(c[4], b[4], 1e-6) << "remembered between runs";
+    EXPECT_NEAR(c[1], b[1], 1.0) << "and the inspector is open again";
+}
+
+// The wheel goes to the window under the pointer: over the inspector it zooms the image (1.25 per notch) and
+// leaves the camera alone; over the viewport it moves the camera and leaves the inspector alone.
+TEST_F(ViewerRound2, WheelGoesToTheWindowUnderThePointer) {
+    ViewerRun r = viewAt(std::string(kInspectSetup) + "inspect \"Normal 1\"\nwait 2\ndump_figures a.txt\n", kBig);
+    ASSERT_EQ(r.rc, 0) << r.log;
+    auto a = readDump(path("a.txt"));
+    const Rect img = rectOf(a["inspector_image"]);
+    char buf[512];
+    std::snprintf(buf, sizeof(buf),
+                  "inspect \"Normal 1\"\nwait 2\ndump_figures a.txt\nscreenshot a.png\nscroll 2 %.0f %.0f\nwait 2\n"
+                  "dump_figures b.txt\nscreenshot b.png\nscroll 2 180 220\nwait 2\ndump_figures c.txt\nscreenshot c.png\n",
+                  img.cx(), img.cy());
+    r = viewAt(std::string(kInspectSetup) + buf, kBig);
+    ASSERT_EQ(r.rc, 0) << r.log;
+    const double z0 = numbers(readDump(path("a.txt"))["inspector_zoom"]).at(0);
+    const double z1 = numbers(readDump(path("b.txt"))["inspector_zoom"]).at(0);
+    const double z2 = numbers(readDump(path("c.txt"))["inspector_zoom"]).at(0);
+    EXPECT_NEAR(z1 / z0, 1.5625, 1e-3) << "two notches over the inspector zoom it";
+    EXPECT_NEAR(z2, z1, 1e-6) << "the wheel over the viewport leaves the inspector";
+    const deepgi::FloatImage ia = deepgi::readImage(path("a.png")), ib = deepgi::readImage(path("b.png")), ic = deepgi::readImage(path("c.png"));
+    const Region viewport{0, 60, kBigW / 2 - 4, kBigH - 30};
+    EXPECT_LT(meanAbsDiff(ia, ib, viewport), 0.002) << "the camera did not move";
+    EXPECT_GT(meanAbsDiff(ib, ic, viewport), 0.02) << "the wheel over the viewport dollies the camera";
+}
+
+// The Pipeline panel: the passes in order with their textures; a click on a texture shows it, a click on a pass
+// selects it (its settings and time open under it).
+TEST_F(ViewerRound2, PipelinePanelShowsTexturesAndPasses) {
+    ViewerRun r = viewAt("panel pipeline\nwait 2\ndump_figures a.txt\n", kBig);
+    ASSERT_EQ(r.rc, 0) << r.log;
+    auto a = readDump(path("a.txt"));
+    ASSERT_TRUE(a.count("pipeline texture Normal")) << readText(path("a.txt"));
+    ASSERT_TRUE(a.count("pipeline pass Radiosity gather"));
+    ASSERT_TRUE(a.count("pipeline pass Deep G-buffer"));
+    EXPECT_LT(rectOf(a["pipeline pass Deep G-buffer"]).y0, rectOf(a["pipeline pass Radiosity gather"]).y0) << "in execution order";
+    EXPECT_LT(rectOf(a["pipeline pass Radiosity gather"]).y0, rectOf(a["pipeline pass Composite"]).y0);
+    const Rect normal = rectOf(a["pipeline texture Normal"]), gbuffer = rectOf(a["pipeline pass Deep G-buffer"]);
+    char buf[256];
+    std::snprintf(buf, sizeof(buf), "panel pipeline\nwait 2\nclick %.0f %.0f\nwait 2\nclick %.0f %.0f\nwait 2\ndump_figures b.txt\nscreenshot b.png\n",
+                  normal.cx(), normal.cy(), gbuffer.x0 + 20, gbuffer.cy());
+    r = viewAt(buf, kBig);
+    ASSERT_EQ(r.rc, 0) << r.log;
+    auto b = readDump(path("b.txt"));
+    EXPECT_EQ(b["viewport_buffer"], "Normal 1") << "the clicked texture is shown";
+    EXPECT_EQ(b["pipeline_selected"], "Deep G-buffer");
+}
+
+// F12 never writes into the working tree: the default folder is under the user's pictures or data folder, and the
+// viewer prints it.
+TEST_F(ViewerRound2, ScreenshotsDefaultOutsideTheWorkingTree) {
+    fs::create_directories(path("home"));
+    ViewerRun r = viewAt(std::string(kSetup) + "capture\nwait 1\n", "--size 320x200",
+                         true, "HOME='" + path("home") + "' XDG_DATA_HOME= XDG_PICTURES_DIR=");
+    ASSERT_EQ(r.rc, 0) << r.log;
+    const std::string dataDir = path("home") + "/.local/share/deepgi/screenshots";
+    EXPECT_NE(r.log.find("F12 screenshots go to " + dataDir), std::string::npos) << r.log;
+    onlyCapture(dataDir);
+    EXPECT_FALSE(fs::exists(path("screenshots"))) << "nothing in the current folder";
+    fs::create_directories(path("home/Pictures"));
+    r = viewAt(std::string(kSetup) + "capture\nwait 1\n", "--size 320x200", true, "HOME='" + path("home") + "' XDG_DATA_HOME= XDG_PICTURES_DIR=");
+    ASSERT_EQ(r.rc, 0) << r.log;
+    EXPECT_NE(r.log.find("F12 screenshots go to " + path("home") + "/Pictures/deepgi"), std::string::npos) << r.log;
+    onlyCapture(path("home/Pictures/deepgi"));
 }
 
 }  // namespace

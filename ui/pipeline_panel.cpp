@@ -8,6 +8,7 @@ namespace deepgi::ui {
 
 PipelineActions drawPipelinePanel(const PipelineGraph& g, PipelinePanelState& st, Settings& settings) {
     PipelineActions act;
+    st.itemRects.clear();
     ImGui::TextDisabled("%zu passes, in execution order; click a texture to show it", g.passes.size());
     for (size_t i = 0; i < g.passes.size(); ++i) {
         const PipelineNode& n = g.passes[i];
@@ -18,6 +19,12 @@ PipelineActions drawPipelinePanel(const PipelineGraph& g, PipelinePanelState& st
         if (!n.enabled) ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyleColorVec4(ImGuiCol_TextDisabled));
         if (ImGui::Selectable(label, st.selectedPass == n.name)) st.selectedPass = st.selectedPass == n.name ? "" : n.name;
         if (!n.enabled) ImGui::PopStyleColor();
+        auto remember = [&](const std::string& key) {
+            if (!st.itemRects.count(key))
+                st.itemRects[key] = glm::vec4(ImGui::GetItemRectMin().x, ImGui::GetItemRectMin().y, ImGui::GetItemRectMax().x,
+                                              ImGui::GetItemRectMax().y);
+        };
+        remember("pass " + n.name);
         auto textures = [&](const char* what, const std::vector<std::string>& names) {
             ImGui::Indent();
             ImGui::TextDisabled("%s", what);
@@ -28,6 +35,7 @@ PipelineActions drawPipelinePanel(const PipelineGraph& g, PipelinePanelState& st
                 if (ImGui::GetItemRectMax().x + ImGui::GetStyle().ItemSpacing.x + w <= right) ImGui::SameLine();
                 else ImGui::Dummy(ImVec2(ImGui::CalcTextSize("writes").x, 0.0f)), ImGui::SameLine();
                 if (ImGui::SmallButton(t.c_str())) act.showTexture = t;
+                remember("texture " + t);
                 if (ImGui::IsItemHovered()) ImGui::SetTooltip("show '%s' in the viewport and the inspector", t.c_str());
             }
             if (names.empty()) { ImGui::SameLine(); ImGui::TextDisabled("-"); }

@@ -84,8 +84,18 @@ void drawHistoryPlot(const char* id, const std::deque<float>& values, float heig
     dl->AddRectFilled(p0, p1, IM_COL32(30, 30, 34, 255));
     dl->AddRect(p0, p1, IM_COL32(80, 80, 90, 255));
     float vmax = 0.0f;
-    for (float v : values) if (std::isfinite(v)) vmax = std::max(vmax, v);
-    const float top = niceCeil(vmax);
+    std::vector<float> sorted;
+    for (float v : values)
+        if (std::isfinite(v)) { vmax = std::max(vmax, v); sorted.push_back(v); }
+    // The scale follows the 95th percentile, so one slow frame (a shader compile) does not flatten the rest; values
+    // above it are drawn at the top.
+    float p95 = 0.0f;
+    if (!sorted.empty()) {
+        const size_t k = std::min(sorted.size() - 1, size_t(0.95 * double(sorted.size())));
+        std::nth_element(sorted.begin(), sorted.begin() + long(k), sorted.end());
+        p95 = sorted[k];
+    }
+    const float top = niceCeil(p95 > 0.0f ? p95 : vmax);
     // Axis labels drawn inside on the left; the curve spans the full history width.
     char label[48];
     std::snprintf(label, sizeof(label), "%.3g %s", double(top), unit);
@@ -95,8 +105,8 @@ void drawHistoryPlot(const char* id, const std::deque<float>& values, float heig
     if (n >= 2) {
         std::vector<ImVec2> pts;
         pts.reserve(size_t(n));
-        const float dx = (width - 2.0f) / float(ProfilerState::kHistory - 1);
-        const float x0 = p1.x - 1.0f - dx * float(n - 1);  // newest at the right edge
+        const float dx = (width - 2.0f) / float(n - 1);  // the recorded frames across the plot, newest at the right
+        const float x0 = p0.x + 1.0f;
         for (int i = 0; i < n; ++i) {
             const float v = std::isfinite(values[size_t(i)]) ? values[size_t(i)] : 0.0f;
             pts.emplace_back(x0 + dx * float(i), p1.y - 1.0f - (height - 2.0f) * std::clamp(v / top, 0.0f, 1.0f));
@@ -111,7 +121,7 @@ void drawHistoryPlot(const char* id, const std::deque<float>& values, float heig
         dl->AddText(ImVec2(p1.x - tw - 3.0f, p0.y + 1.0f), IM_COL32(235, 235, 235, 255), label);
     }
     if (ImGui::IsItemHovered())
-        ImGui::SetTooltip("last %d frames; axis 0 .. %.3g %s; max %.3g", n, double(top), unit, double(vmax));
+        ImGui::SetTooltip("last %d frames; axis 0 .. %.3g %s (95th percentile); max %.3g", n, double(top), unit, double(vmax));
     ImGui::PopID();
 }
 
@@ -121,7 +131,7 @@ ProfilerActions drawProfilerPanel(ProfilerState& p, const MemoryReport& mem, int
     ImGui::Text("%d x %d: passes %.1f ms, frame %.1f ms (%.1f fps)", width, height, frame, cpu,
                 cpu > 0.0f ? 1000.0f / cpu : 0.0f);
     ImGui::TextDisabled("%s", p.timingNote.c_str());
-    ImGui::TextDisabled("renderer (sum of passes), last %d frames", ProfilerState::kHistory);
+    ImGui::TextDisabled("renderer (sum of passes), last %d frames", int(p.frameMs.size()));
     drawHistoryPlot("frame", p.frameMs, 64.0f, "ms");
     // One row per pass: its whole name and mean time, then its own plot across the panel (names are never cut).
     for (const auto& name : p.passOrder) {

@@ -115,6 +115,7 @@ struct PipelineGraph {
 };
 struct PipelinePanelState {
     std::string selectedPass;
+    std::map<std::string, glm::vec4> itemRects;  // pass and texture name -> x0 y0 x1 y1 of its first item (for scripts)
 };
 struct PipelineActions {
     std::string showTexture;  // a texture was clicked: show it in the viewport (and the inspector)
