@@ -377,9 +377,16 @@ void Viewer::drawViewport() {
                   ptMode == ui::PathTraceMode::Off ? view_.buffer.c_str() : "Path trace this view", renderer_->width(),
                   renderer_->height(), double(fm));
     shadowed(vpX0_ + 8, vpY0_ + 6, IM_COL32(235, 235, 235, 255), line);
-    if (ptMode != ui::PathTraceMode::Off) {
+    if (view_.pathTrace != ui::PathTraceMode::Off) {  // the status shows before the first samples arrive
+        // One overlay line per part ("path traced N spp", "whole: ...", "indirect: ...") so that narrow views keep them.
         const std::string fig = pathTraceFiguresLine();
-        shadowed(vpX0_ + 8, vpY0_ + 6 + ImGui::GetTextLineHeightWithSpacing(), IM_COL32(170, 230, 255, 255), fig);
+        float y = vpY0_ + 6 + ImGui::GetTextLineHeightWithSpacing();
+        for (size_t from = 0; from < fig.size();) {
+            const size_t bar = fig.find(" | ", from);
+            shadowed(vpX0_ + 8, y, IM_COL32(170, 230, 255, 255), fig.substr(from, bar == std::string::npos ? std::string::npos : bar - from));
+            y += ImGui::GetTextLineHeightWithSpacing();
+            from = bar == std::string::npos ? fig.size() : bar + 3;
+        }
         if (ptMode == ui::PathTraceMode::Split) {
             const float sx = vpX0_ + vw * view_.pathTraceSplit;
             shadowed(sx - ImGui::CalcTextSize("real time").x - 8, vpY1_ - 40, IM_COL32(235, 235, 235, 255), "real time");

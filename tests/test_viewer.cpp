@@ -407,6 +407,13 @@ TEST_F(ViewerRound2, CaptureReRendersHeadlessWithTheSameImage) {
     EXPECT_LT(meanDiff, 0.5 / 255.0);
     EXPECT_GT(fracWithin, 0.995);
 
+    // `view --camera-file` starts from that camera: its own capture holds the same matrix.
+    r = view("wait 1\ncapture\nwait 1\n", "--camera-file '" + (cap / "camera.json").string() + "' --screenshots '" + path("shots2") + "'");
+    ASSERT_EQ(r.rc, 0) << r.log;
+    const nlohmann::json cam2 = nlohmann::json::parse(readText((onlyCapture(path("shots2")) / "camera.json").string()));
+    for (int i = 0; i < 16; ++i)
+        EXPECT_NEAR(cam2["camera_to_world"][size_t(i)].get<double>(), cam["camera_to_world"][size_t(i)].get<double>(), 1e-5) << i;
+
     // The same camera file works for reference (and rejects a broken one, naming the file and the field).
     ASSERT_EQ(runCommand(std::string("'") + DEEPGI_BINARY + "' reference '" + DEEPGI_ASSET_DIR + "/cornell_box/cornell_box.gltf' --camera-file '" +
                          (cap / "camera.json").string() + "' --size 32x18 --spp 1 --quiet --threads 1 --out '" + path("ref") + "'", &log), 0) << log;
@@ -416,6 +423,10 @@ TEST_F(ViewerRound2, CaptureReRendersHeadlessWithTheSameImage) {
     std::ofstream(path("bad.json")) << bad.dump();
     EXPECT_EQ(runCommand(std::string("'") + DEEPGI_BINARY + "' render --camera-file '" + path("bad.json") + "' --size 16x16 --frames 1 --out '" + path("x") + "'", &log), 1);
     EXPECT_NE(log.find("camera file " + path("bad.json") + ": \"yfov\" must be in (0, pi) radians"), std::string::npos) << log;
+    // bench reads it before any reference is rendered.
+    EXPECT_EQ(runCommand(std::string("'") + DEEPGI_BINARY + "' bench --scene '" + DEEPGI_ASSET_DIR + "/cornell_box/cornell_box.gltf' --camera-file '" +
+                         path("bad.json") + "' --quiet --out '" + path("bench") + "'", &log), 1);
+    EXPECT_NE(log.find("camera file " + path("bad.json") + ": \"yfov\""), std::string::npos) << log;
 }
 
 // deepgi compare against answers worked out by hand: A = 1.1 B everywhere gives relative L1 0.1, ratio of means 1.1,

@@ -14,8 +14,9 @@ PipelineActions drawPipelinePanel(const PipelineGraph& g, PipelinePanelState& st
         const PipelineNode& n = g.passes[i];
         ImGui::PushID(int(i));
         char label[160];
-        if (n.ms >= 0.0) std::snprintf(label, sizeof(label), "%zu. %s  (%.2f ms)%s", i + 1, n.name.c_str(), n.ms, n.enabled ? "" : "  off");
-        else std::snprintf(label, sizeof(label), "%zu. %s%s", i + 1, n.name.c_str(), n.enabled ? "" : "  off");
+        // "###pass": the ID must not change with the time in the label, or a click spanning two frames is lost.
+        if (n.ms >= 0.0) std::snprintf(label, sizeof(label), "%zu. %s  (%.2f ms)%s###pass", i + 1, n.name.c_str(), n.ms, n.enabled ? "" : "  off");
+        else std::snprintf(label, sizeof(label), "%zu. %s%s###pass", i + 1, n.name.c_str(), n.enabled ? "" : "  off");
         if (!n.enabled) ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyleColorVec4(ImGuiCol_TextDisabled));
         if (ImGui::Selectable(label, st.selectedPass == n.name)) st.selectedPass = st.selectedPass == n.name ? "" : n.name;
         if (!n.enabled) ImGui::PopStyleColor();
@@ -27,6 +28,7 @@ PipelineActions drawPipelinePanel(const PipelineGraph& g, PipelinePanelState& st
         remember("pass " + n.name);
         auto textures = [&](const char* what, const std::vector<std::string>& names) {
             ImGui::Indent();
+            ImGui::PushID(what);  // a texture both read and written by one pass gets two distinct buttons
             ImGui::TextDisabled("%s", what);
             const float right = ImGui::GetWindowPos().x + ImGui::GetWindowContentRegionMax().x;
             for (const auto& t : names) {
@@ -39,6 +41,7 @@ PipelineActions drawPipelinePanel(const PipelineGraph& g, PipelinePanelState& st
                 if (ImGui::IsItemHovered()) ImGui::SetTooltip("show '%s' in the viewport and the inspector", t.c_str());
             }
             if (names.empty()) { ImGui::SameLine(); ImGui::TextDisabled("-"); }
+            ImGui::PopID();
             ImGui::Unindent();
         };
         textures("reads ", n.reads);
