@@ -54,11 +54,19 @@ protected:
         cmd << "cd '" << dir_.string() << "' && XDG_CONFIG_HOME='" << path("config") << "' xvfb-run -a -s '-screen 0 1280x720x24' '"
             << DEEPGI_BINARY << "' view " << (fresh ? "--fresh " : "") << "--size " << kW << "x" << kH << " --script '" << path("script.txt") << "' "
             << extra << " '" << DEEPGI_ASSET_DIR << "/cornell_box/cornell_box.gltf' > '" << log << "' 2>&1";
+        return runUnderXvfb(cmd.str(), log);
+    }
+    // xvfb-run exits 5 when it cannot remove its own temporary folder, whatever the viewer did (seen with several
+    // xvfb-run -a at once): that run's status is lost, so it runs once more.
+    static ViewerRun runUnderXvfb(const std::string& cmd, const std::string& log) {
         ViewerRun r;
-        const int status = std::system(cmd.str().c_str());
-        r.rc = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-        std::ifstream in(log);
-        r.log.assign(std::istreambuf_iterator<char>(in), {});
+        for (int attempt = 0; attempt < 2; ++attempt) {
+            const int status = std::system(cmd.c_str());
+            r.rc = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+            std::ifstream in(log);
+            r.log.assign(std::istreambuf_iterator<char>(in), {});
+            if (!(r.rc == 5 && r.log.find("xvfb-run: error: problem while cleaning up") != std::string::npos)) break;
+        }
         return r;
     }
     deepgi::FloatImage shot(const std::string& name) {
@@ -318,11 +326,7 @@ protected:
             << "' xvfb-run -a -s '-screen 0 1280x720x24' '" << DEEPGI_BINARY << "' view " << (fresh ? "--fresh " : "")
             << "--script '" << path("script.txt") << "' " << extra << " '" << DEEPGI_ASSET_DIR
             << "/cornell_box/cornell_box.gltf' > '" << log << "' 2>&1";
-        ViewerRun r;
-        const int status = std::system(cmd.str().c_str());
-        r.rc = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-        r.log = readText(log);
-        return r;
+        return runUnderXvfb(cmd.str(), log);
     }
 };
 

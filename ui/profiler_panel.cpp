@@ -98,7 +98,7 @@ void drawHistoryPlot(const char* id, const std::deque<float>& values, float heig
     const float top = niceCeil(p95 > 0.0f ? p95 : vmax);
     // Axis labels drawn inside on the left; the curve spans the full history width.
     char label[48];
-    std::snprintf(label, sizeof(label), "%.3g %s", double(top), unit);
+    std::snprintf(label, sizeof(label), "%g %s", double(top), unit);
     const float midY = p0.y + height * 0.5f;
     dl->AddLine(ImVec2(p0.x, midY), ImVec2(p1.x, midY), IM_COL32(60, 60, 70, 255));
     const int n = int(values.size());
