@@ -2,10 +2,10 @@
 
 #include "renderer/reference/path_tracer.h"
 
-#include <nlohmann/json.hpp>
 
 #include <algorithm>
 #include <chrono>
+#include <cstdio>
 #include <cstring>
 
 namespace deepgi {
@@ -27,7 +27,14 @@ ViewerPathTrace::~ViewerPathTrace() {
 }
 
 void ViewerPathTrace::request(const Camera& camera, const Settings& settings, int width, int height) {
-    const std::string key = settingsToJson(settings).dump();
+    // The path tracer reads only the lights and the backdrop (the Light group): other settings do not restart it.
+    std::string key;
+    for (const auto& info : settingTable())
+        if (std::string(info.key).rfind("light.", 0) == 0) {
+            char v[32];
+            std::snprintf(v, sizeof(v), "%.17g,", info.get(settings));
+            key += v;
+        }
     std::lock_guard<std::mutex> lock(mutex_);
     const bool same = active_ && width == width_ && height == height_ && key == settingsKey_ &&
                       std::memcmp(&camera.cameraToWorld, &camera_.cameraToWorld, sizeof(glm::mat4)) == 0 &&

@@ -1,7 +1,7 @@
 #pragma once
 // "Path trace this view": the reference path tracer renders the viewer's camera progressively on a worker thread
 // (1 sample per pixel per pass with a new seed each pass, accumulated), at a reduced resolution and on all cores
-// but one, so the viewer stays usable. A new camera, setting or size restarts the accumulation.
+// but one, so the viewer stays usable. A new camera, light setting or size restarts the accumulation.
 #include "renderer/core/camera.h"
 #include "renderer/core/image_io.h"
 #include "renderer/core/settings.h"
@@ -22,7 +22,8 @@ public:
     ViewerPathTrace(std::shared_ptr<const Scene> scene, int threads = 0, int maxBounces = 16);
     ~ViewerPathTrace();  // stops the worker (waits for its current pass)
 
-    // The view to trace; a change of camera, settings or size restarts the accumulation. Cheap when unchanged.
+    // The view to trace; a change of camera, size or a setting the path tracer reads (the Light group) restarts the
+    // accumulation. Cheap when unchanged.
     void request(const Camera& camera, const Settings& settings, int width, int height);
     void pause();  // stops tracing until the next request()
 

@@ -757,7 +757,8 @@ namespace {
 // camera restarts the accumulation.
 TEST_F(ViewerRound2, PathTraceThisViewMatchesTheReference) {
     ViewerRun r = view(std::string(kSetup) + "pathtrace split\nsleep 4\nwait 1\ndump_figures a.txt\ncapture\nscreenshot split.png\n"
-                       "key KP_7\nwait 3\ndump_figures b.txt\n",
+                       "key KP_7\nwait 3\ndump_figures b.txt\nset composite.exposure=1\nwait 3\ndump_figures c.txt\n"
+                       "set light.intensity_scale=2\nwait 3\ndump_figures d.txt\n",
                        "--screenshots '" + path("shots") + "'");
     ASSERT_EQ(r.rc, 0) << r.log;
     auto a = readDump(path("a.txt")), b = readDump(path("b.txt"));
@@ -767,6 +768,11 @@ TEST_F(ViewerRound2, PathTraceThisViewMatchesTheReference) {
     ASSERT_GE(sb.size(), 2u);
     EXPECT_GE(sa[0], 8.0) << "accumulating";
     EXPECT_GT(sb[1], sa[1]) << "the camera moved: a new accumulation";
+    const auto sc = numbers(readDump(path("c.txt"))["pathtrace_samples"]), sd = numbers(readDump(path("d.txt"))["pathtrace_samples"]);
+    ASSERT_GE(sc.size(), 2u);
+    ASSERT_GE(sd.size(), 2u);
+    EXPECT_EQ(sc[1], sb[1]) << "the display exposure does not change what is traced";
+    EXPECT_GT(sd[1], sc[1]) << "a light setting restarts it";
     for (const char* label : {"whole: rel L1 (4x4) ", "indirect: rel L1 (4x4) "})
         EXPECT_TRUE(std::isfinite(numberAfter(a["pathtrace"], label))) << label << " in " << a["pathtrace"];
     EXPECT_TRUE(std::isfinite(numberAfter(a["pathtrace"], "ratio of means "))) << a["pathtrace"];
