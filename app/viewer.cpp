@@ -59,6 +59,7 @@ Viewer* self(GLFWwindow* w) { return static_cast<Viewer*>(glfwGetWindowUserPoint
 
 bool Viewer::init() {
     settings_ = opt_.settings;
+    if (opt_.screenshotDir.empty()) opt_.screenshotDir = defaultScreenshotDir();  // never the current folder
     loadState();
     if (!opt_.scriptPath.empty()) script_ = ui::ScriptRunner(opt_.scriptPath, ui::parseViewerScript(opt_.scriptPath));  // fail before opening a window
 
