@@ -11,7 +11,7 @@ namespace deepgi {
 namespace {
 
 struct BenchArgs {
-    std::vector<std::string> scenes, cameras;
+    std::vector<std::string> scenes, cameras, cameraFiles;
     std::string size = "320x180";
     std::string wholeSize = "640x360";
     std::string configs;
@@ -78,6 +78,7 @@ CommandRegistrar registrar("bench", "Speed against error: sweep configurations a
     auto a = std::make_shared<BenchArgs>();
     sub.add_option("--scene", a->scenes, "glTF scene (repeatable; default: the atrium and the Cornell box)");
     sub.add_option("--camera", a->cameras, "Camera of each --scene, in order (default: courtyard and front; '' = the scene's first)");
+    sub.add_option("--camera-file", a->cameraFiles, "Camera JSON of each --scene, in order (a viewer capture's camera.json); wins over --camera");
     sub.add_option("--size", a->size, "Image size WxH")->capture_default_str();
     sub.add_option("--frames", a->o.frames, "Frames per configuration (still camera)")->capture_default_str()->check(CLI::Range(2, 10000));
     sub.add_option("--timed-frames", a->o.timedFrames, "The last frames: timing medians and stability")->capture_default_str()->check(CLI::Range(1, 10000));
@@ -119,6 +120,8 @@ CommandRegistrar registrar("bench", "Speed against error: sweep configurations a
             if (a->cameras.size() > a->scenes.size()) throw std::runtime_error("bench: more --camera than --scene options");
             for (size_t i = 0; i < a->scenes.size(); ++i) o.views.push_back({a->scenes[i], i < a->cameras.size() ? a->cameras[i] : ""});
         }
+        if (a->cameraFiles.size() > o.views.size()) throw std::runtime_error("bench: more --camera-file than views");
+        for (size_t i = 0; i < a->cameraFiles.size(); ++i) o.views[i].cameraFile = a->cameraFiles[i];
         std::stringstream ss(a->configs);
         std::string item;
         while (std::getline(ss, item, ','))

@@ -25,6 +25,7 @@ namespace {
 struct ReferenceArgs {
     std::string scene = std::string(DEEPGI_ASSET_DIR) + "/atrium/atrium.gltf";
     std::string camera;
+    std::string cameraFile;
     std::string size = "320x180";
     int spp = 256;
     int bounces = 16;
@@ -55,7 +56,7 @@ int runReference(const ReferenceArgs& a) {
     Scene scene = loadGltf(a.scene, gltfLoadOptions(settings));
     if (!scene.bounds.valid()) scene.computeBounds();
     for (const std::string& w : scene.warnings) std::fprintf(stderr, "deepgi: warning: %s\n", w.c_str());
-    const Camera camera = selectCamera(scene, a.camera);
+    const Camera camera = selectCamera(scene, a.camera, a.cameraFile);
 
     namespace fs = std::filesystem;
     std::error_code ec;
@@ -111,6 +112,7 @@ const CommandRegistrar kReference(
         auto a = std::make_shared<ReferenceArgs>();
         sub.add_option("scene", a->scene, "glTF scene (.gltf/.glb)")->capture_default_str();
         sub.add_option("--camera", a->camera, "Camera name (default: the scene's first, or a framing camera)");
+        sub.add_option("--camera-file", a->cameraFile, "Camera from a JSON file (a viewer capture's camera.json); wins over --camera");
         sub.add_option("--size", a->size, "Image size WxH")->capture_default_str();
         sub.add_option("--spp", a->spp, "Samples per pixel")->capture_default_str();
         sub.add_option("--bounces", a->bounces, "Maximum bounces after the camera ray (0 = direct light only)")

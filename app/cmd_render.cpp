@@ -16,6 +16,7 @@ CommandRegistrar registrar("render", "Render a glTF scene headless (OSMesa) to a
     sub.add_option("--size", *size, "Image size WxH")->capture_default_str();
     sub.add_option("--frames", job->frames, "Frames to render (temporal passes converge over them)")->capture_default_str()->check(CLI::Range(1, 100000));
     sub.add_option("--camera", job->camera, "glTF camera name (default: the scene's first, else a framing camera)");
+    sub.add_option("--camera-file", job->cameraFile, "Camera from a JSON file (a viewer capture's camera.json); wins over --camera");
     sub.add_option("--buffers", job->buffers, "Buffers to dump as EXR: all, or comma-separated layer names (see `deepgi buffers`)");
     sub.add_option("--out", job->outDir, "Output folder")->capture_default_str();
     sub.add_option("--shaders", job->shaderDir, "Shader folder (default: the source tree's shaders/)");

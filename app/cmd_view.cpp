@@ -17,9 +17,10 @@ CommandRegistrar registrar("view", "Interactive viewer: Blender-style navigation
     sub.add_option("scene", opt->scenePath, "glTF/glb file (default: the atrium in assets/)");
     sub.add_option("--size", *size, "Window size WxH (default: the last one, else 1280x720)");
     sub.add_option("--camera", opt->camera, "Start from this glTF camera");
-    sub.add_option("--script", opt->scriptPath, "Run timed actions from FILE and exit at its end (see app/viewer_script.h)");
+    sub.add_option("--camera-file", opt->cameraFile, "Start from the camera in a JSON file (a capture's camera.json)");
+    sub.add_option("--script", opt->scriptPath, "Run timed actions from FILE and exit at its end (see ui/script.h)");
     sub.add_option("--shaders", opt->shaderDir, "Shader folder (default: the source tree's shaders/); edits reload live");
-    sub.add_option("--screenshots", opt->screenshotDir, "Folder for F12 screenshots")->capture_default_str();
+    sub.add_option("--screenshots", opt->screenshotDir, "Folder for F12 screenshots (default: $XDG_PICTURES_DIR/deepgi, ~/Pictures/deepgi or $XDG_DATA_HOME/deepgi/screenshots)");
     sub.add_flag("--fresh", opt->fresh, "Ignore the saved viewer state and do not write it");
     settings->add(sub);
     return [opt, size, settings]() {
@@ -31,6 +32,7 @@ CommandRegistrar registrar("view", "Interactive viewer: Blender-style navigation
         opt->settings = settings->build();
         opt->settingsGiven = !settings->preset.empty() || !settings->settingsFile.empty() || !settings->assignments.empty();
         if (opt->scenePath.empty()) opt->scenePath = defaultScenePath();
+        if (opt->screenshotDir.empty()) opt->screenshotDir = defaultScreenshotDir();
         return runViewer(*opt);
 #else
         std::fprintf(stderr, "deepgi view: this build has no UI (ui/ had no sources)\n");

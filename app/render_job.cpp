@@ -33,7 +33,7 @@ RenderJobResult runRenderJob(const RenderJob& job) {
     auto scene = std::make_shared<Scene>(loadGltf(job.scenePath, gltfLoadOptions(job.settings)));
     result.warnings = scene->warnings;
     result.triangles = scene->triangleCount();
-    Camera camera = selectCamera(*scene, job.camera);
+    Camera camera = selectCamera(*scene, job.camera, job.cameraFile);
 
     gl::OffscreenContext context(job.context);
     result.glRenderer = context.renderer();

@@ -10,6 +10,7 @@ namespace deepgi {
 struct RenderJob {
     std::string scenePath;
     std::string camera;
+    std::string cameraFile;  // --camera-file: a capture's camera.json (wins over camera)
     int width = 640, height = 360;
     int frames = 16;
     std::string buffers;  // "", "all" or comma-separated layer names

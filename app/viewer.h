@@ -9,9 +9,10 @@ namespace deepgi {
 struct ViewerOptions {
     std::string scenePath;
     std::string camera;          // glTF camera name ("" = restored view, else the scene's first camera)
+    std::string cameraFile;      // --camera-file: a capture's camera.json (wins over camera)
     std::string scriptPath;      // --script: timed actions, exits at the end
     std::string shaderDir;       // --shaders ("" = the built-in folder)
-    std::string screenshotDir = "screenshots";
+    std::string screenshotDir;   // "" = defaultScreenshotDir()
     int width = 1280, height = 720;
     bool sizeGiven = false;      // --size overrides the restored window size
     Settings settings;
@@ -24,5 +25,8 @@ int runViewer(const ViewerOptions& options);
 
 // $XDG_CONFIG_HOME/deepgi/viewer.json, else ~/.config/deepgi/viewer.json.
 std::string viewerStatePath();
+// Where F12 captures go by default, never the working tree: $XDG_PICTURES_DIR/deepgi, else ~/Pictures/deepgi if
+// ~/Pictures exists, else $XDG_DATA_HOME/deepgi/screenshots (~/.local/share/deepgi/screenshots).
+std::string defaultScreenshotDir();
 
 }  // namespace deepgi

@@ -285,7 +285,7 @@ BenchResult runBench(const BenchOptions& o) {
         vd.view = v;
         auto scene = std::make_shared<Scene>(loadGltf(v.scenePath));
         if (!scene->bounds.valid()) scene->computeBounds();
-        const Camera cam = selectCamera(*scene, v.camera);
+        const Camera cam = selectCamera(*scene, v.camera, v.cameraFile);
         const std::string sceneName = fs::path(v.scenePath).stem().string();
         const std::string camName = cam.name.empty() ? "default" : cam.name;
         vd.label = sceneName + "/" + camName;
@@ -396,7 +396,7 @@ BenchResult runBench(const BenchOptions& o) {
         Renderer r(ropt);
         r.setScene(scene);
         r.resize(o.wholeFrameWidth, o.wholeFrameHeight);
-        r.setCamera(selectCamera(*scene, o.views[0].camera));
+        r.setCamera(selectCamera(*scene, o.views[0].camera, o.views[0].cameraFile));
         Settings s = o.base;
         applyPreset(s, "balanced");
         std::vector<double> totals;

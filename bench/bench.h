@@ -25,6 +25,7 @@ std::vector<BenchConfig> defaultConfigs();
 
 struct BenchView {
     std::string scenePath, camera;
+    std::string cameraFile;  // a camera.json (e.g. a viewer capture); wins over camera
 };
 
 struct BenchOptions {

@@ -78,6 +78,8 @@ bool settingWidget(Settings& s, const SettingInfo& info) {
 
 }  // namespace
 
+bool drawSettingWidget(Settings& s, const SettingInfo& info) { return settingWidget(s, info); }
+
 SettingsActions drawSettingsPanel(Settings& s, SettingsPanelState& state) {
     SettingsActions a;
     ImGui::TextDisabled("Preset");

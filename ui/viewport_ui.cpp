@@ -49,6 +49,19 @@ float drawViewportHeader(ViewportState& v, ViewerServices& services, float x0, f
             }
         }
         ImGui::SameLine();
+        ImGui::SetNextItemWidth(120.0f);
+        static const char* kPathTrace[] = {"Real time", "Path traced", "Split: PT right"};
+        int pt = int(v.pathTrace);
+        if (ImGui::Combo("##pathtrace", &pt, kPathTrace, IM_ARRAYSIZE(kPathTrace))) v.pathTrace = PathTraceMode(pt);
+        if (ImGui::IsItemHovered())
+            ImGui::SetTooltip("Path trace this view: the reference path tracer renders this camera progressively (1/4 size,\n"
+                              "all cores but one), alone or split against the real-time frame, with live error figures");
+        if (v.pathTrace == PathTraceMode::Split) {
+            ImGui::SameLine();
+            ImGui::SetNextItemWidth(70.0f);
+            ImGui::SliderFloat("##ptsplit", &v.pathTraceSplit, 0.0f, 1.0f, "%.2f");
+        }
+        ImGui::SameLine();
         ImGui::TextDisabled("%s", v.viewName.c_str());
         height = ImGui::GetWindowHeight();
     }

@@ -1,9 +1,11 @@
 #include "renderer/core/camera.h"
 
 #include <glm/gtc/matrix_transform.hpp>
+#include <nlohmann/json.hpp>
 
 #include <algorithm>
 #include <cmath>
+#include <fstream>
 #include <stdexcept>
 
 namespace deepgi {
@@ -93,6 +95,70 @@ Camera selectCamera(const Scene& scene, const std::string& name) {
     throw std::runtime_error("no camera named '" + name + "' in " +
                              (scene.sourcePath.empty() ? std::string("the scene") : scene.sourcePath) +
                              " (available: " + (names.empty() ? "none" : names) + ")");
+}
+
+nlohmann::json cameraToJson(const Camera& cam) {
+    nlohmann::json m = nlohmann::json::array();
+    for (int c = 0; c < 4; ++c)
+        for (int r = 0; r < 4; ++r) m.push_back(cam.cameraToWorld[c][r]);
+    return {{"name", cam.name}, {"camera_to_world", m}, {"perspective", cam.perspective}, {"yfov", cam.yfov},
+            {"ortho_half_height", cam.orthoHalfHeight}, {"znear", cam.znear}, {"zfar", cam.zfar}};
+}
+
+Camera cameraFromJson(const nlohmann::json& j, const std::string& source) {
+    auto fail = [&](const std::string& why) { throw std::runtime_error(source + ": " + why); };
+    if (!j.is_object()) fail("not a JSON object");
+    auto number = [&](const char* key) {
+        if (!j.contains(key)) fail(std::string("missing \"") + key + "\"");
+        if (!j[key].is_number()) fail(std::string("\"") + key + "\" is not a number");
+        const double v = j[key].get<double>();
+        if (!std::isfinite(v)) fail(std::string("\"") + key + "\" is not finite");
+        return float(v);
+    };
+    Camera c;
+    c.name = j.contains("name") && j["name"].is_string() ? j["name"].get<std::string>() : std::string("camera file");
+    if (!j.contains("camera_to_world") || !j["camera_to_world"].is_array() || j["camera_to_world"].size() != 16)
+        fail("\"camera_to_world\" must be an array of 16 numbers (column-major 4x4)");
+    for (int i = 0; i < 16; ++i) {
+        const auto& v = j["camera_to_world"][size_t(i)];
+        if (!v.is_number() || !std::isfinite(v.get<double>())) fail("\"camera_to_world\"[" + std::to_string(i) + "] is not a finite number");
+        c.cameraToWorld[i / 4][i % 4] = v.get<float>();
+    }
+    const glm::mat3 r(c.cameraToWorld);
+    for (int a = 0; a < 3; ++a) {
+        if (std::abs(glm::length(r[a]) - 1.0f) > 1e-3f) fail("\"camera_to_world\" axis " + std::to_string(a) + " is not of unit length");
+        for (int b = a + 1; b < 3; ++b)
+            if (std::abs(glm::dot(r[a], r[b])) > 1e-3f) fail("\"camera_to_world\" axes are not orthogonal");
+    }
+    const glm::vec4 last(c.cameraToWorld[0][3], c.cameraToWorld[1][3], c.cameraToWorld[2][3], c.cameraToWorld[3][3]);
+    if (glm::length(last - glm::vec4(0, 0, 0, 1)) > 1e-5f) fail("\"camera_to_world\" last row must be 0 0 0 1");
+    if (!j.contains("perspective") || !j["perspective"].is_boolean()) fail("\"perspective\" must be true or false");
+    c.perspective = j["perspective"].get<bool>();
+    c.yfov = number("yfov");
+    c.orthoHalfHeight = number("ortho_half_height");
+    c.znear = number("znear");
+    c.zfar = number("zfar");
+    if (c.perspective && !(c.yfov > 0.0f && c.yfov < 3.14159f)) fail("\"yfov\" must be in (0, pi) radians");
+    if (!c.perspective && !(c.orthoHalfHeight > 0.0f)) fail("\"ortho_half_height\" must be positive");
+    if (!(c.znear > 0.0f)) fail("\"znear\" must be positive");
+    if (!(c.zfar > c.znear)) fail("\"zfar\" must be greater than \"znear\"");
+    return c;
+}
+
+Camera loadCameraFile(const std::string& path) {
+    std::ifstream in(path);
+    if (!in) throw std::runtime_error("cannot read camera file " + path);
+    nlohmann::json j;
+    try {
+        j = nlohmann::json::parse(in);
+    } catch (const std::exception& e) {
+        throw std::runtime_error("camera file " + path + " is not valid JSON (" + e.what() + ")");
+    }
+    return cameraFromJson(j, "camera file " + path);
+}
+
+Camera selectCamera(const Scene& scene, const std::string& name, const std::string& cameraFile) {
+    return cameraFile.empty() ? selectCamera(scene, name) : loadCameraFile(cameraFile);
 }
 
 }  // namespace deepgi

@@ -3,6 +3,7 @@
 #include "renderer/scene/scene.h"
 
 #include <glm/glm.hpp>
+#include <nlohmann/json_fwd.hpp>
 #include <string>
 
 namespace deepgi {
@@ -31,6 +32,15 @@ Camera cameraFromDesc(const CameraDesc& desc, const Aabb& bounds);
 // name "" = the scene's first camera, or the framing camera when it has none. Unknown name throws
 // std::runtime_error listing the available names.
 Camera selectCamera(const Scene& scene, const std::string& name);
+// A camera file (the viewer's capture writes one as camera.json): {"camera_to_world": 16 numbers, column-major,
+// "perspective", "yfov" (radians), "ortho_half_height", "znear", "zfar"} plus optional "name", "width", "height".
+nlohmann::json cameraToJson(const Camera& cam);
+// Throws std::runtime_error naming `source` and the field for a missing or bad field (non-finite numbers, a matrix
+// that is not a rotation and translation, fov outside (0, 180) degrees, znear <= 0 or zfar <= znear).
+Camera cameraFromJson(const nlohmann::json& j, const std::string& source);
+Camera loadCameraFile(const std::string& path);  // also throws naming the file when it cannot be read or parsed
+// --camera-file wins over --camera: the one place every command picks its camera.
+Camera selectCamera(const Scene& scene, const std::string& name, const std::string& cameraFile);
 // Near/far planes that enclose the scene bounds as seen from this camera (keeps depth precision).
 void fitClipPlanes(Camera& cam, const Aabb& bounds);
 

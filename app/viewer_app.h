@@ -1,0 +1,177 @@
+#pragma once
+// The viewer's application object, shared by app/viewer*.cpp (each one job: setup and frame loop, input, captures
+// and the state file, the script host). Panels and the script interpreter are in ui/.
+#ifdef DEEPGI_HAVE_UI
+#include "app/camera_controller.h"
+#include "app/viewer_path_trace.h"
+#include "app/viewer.h"
+#include "renderer/core/image_io.h"
+#include "renderer/passes/buffer_view_pass.h"
+#include "renderer/renderer.h"
+#include "ui/script.h"
+#include "ui/viewer_ui.h"
+
+#include <glad/gl.h>
+// glad first: GLFW must not pull in the system GL header.
+#include <GLFW/glfw3.h>
+
+#include <deque>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace deepgi {
+
+class Viewer : public ui::ViewerServices, public ui::ScriptHost {
+public:
+    explicit Viewer(const ViewerOptions& o) : opt_(o) {}
+    ~Viewer() override;
+    int run();
+
+    // ViewerServices
+    std::vector<std::string> bufferNames() override;
+    BufferSource source(const std::string& name, int level) override;
+    GLuint drawView(int slot, const BufferSource& a, const BufferSource* b, const BufferViewParams& p, int w, int h) override;
+    TexelBlock readTexels(const BufferSource& s, int x, int y, int w, int h) override {
+        return BufferViewPass::readTexels(s, x, y, w, h);
+    }
+    ui::BufferStats stats(const std::string& name, int level) override;
+    std::string loadReference(const std::string& path) override;
+    const Camera& camera() const override { return renderer_->camera(); }
+    std::string description(const std::string& name) override;
+    ui::ErrorView errorView(const std::string& a, const std::string& b, int level, ui::CompareMode mode, float scale) override;
+    ui::EmptyMask emptyMask(const std::string& name, int level) override;
+
+    // ScriptHost (ui/script.h)
+    bool scriptReady() override { return renderer_ && renderer_->frameIndex() > 0; }
+    bool scriptBusy() override { return !uiDrag_.empty(); }
+    void scriptKey(int key, int mods) override;
+    void scriptDrag(int button, glm::dvec2 from, glm::dvec2 to, int mods) override;
+    void scriptPointer(glm::dvec2 at, int button, bool down) override;
+    void scriptScroll(double notches, const glm::dvec2* at) override;
+    void scriptSet(const std::string& assignment) override;
+    void scriptShow(const std::string& buffer) override;
+    void scriptInspect(const std::string& a, const std::string& b) override;
+    void scriptCompare(const std::string& mode) override;
+    void scriptReference(const std::string& path) override;
+    void scriptPathTrace(const std::string& mode) override;
+    void scriptCamera(const std::string& name) override;
+    void scriptScreenshot(const std::string& path) override { pendingShot_ = path; }
+    void scriptPanel(const std::string& name) override;
+    void scriptResize(int w, int h) override;
+    void scriptCapture() override;
+    void scriptProfilerCsv(const std::string& path) override;
+    void scriptDumpErrors(const std::string& path) override;
+    void scriptDumpFigures(const std::string& path) override;
+    void scriptReload() override;
+    void scriptConverge(int frames) override { convergePending_ += frames; }
+
+    // Input, from GLFW callbacks or the script (fromScript bypasses ImGui's capture flags).
+    void onMouseButton(int button, int action, int mods, bool fromScript);
+    void onCursor(double x, double y, bool fromScript);
+    void onScroll(double dy, bool fromScript);
+    void onKey(int key, int action, int mods, bool fromScript);
+
+private:
+    enum class Drag { None, Orbit, Pan, Zoom };
+
+    bool init();
+    void loadState();
+    void saveState();
+    void frame();
+    void drawUi();
+    void drawSidebar(float x0, float height);
+    void updateFly(double dt);
+    void cut() { renderer_->resetHistory(); }
+    void useSceneCamera(int index);
+    bool inViewport(double x, double y) const {
+        return x >= vpX0_ && x < vpX1_ && y >= vpY0_ && y < vpY1_;
+    }
+    void capture();
+    void writeWindowPng(const std::string& path);
+    void setStatus(const std::string& s);
+    void applyScriptPointer();  // after the GLFW backend's NewFrame, before ImGui's
+    void routeScriptWheel();    // after ImGui's NewFrame: the wheel goes to the viewport if no window took it
+    void drawViewport();
+    void afterRender();         // the path tracer's request and figures, after each frame's render
+    ui::PathTraceMode pathTraceMode() const { return ptTex_ ? view_.pathTrace : ui::PathTraceMode::Off; }
+    std::string pathTraceFiguresLine() const;
+    std::string writeProfilerCsv(const std::string& path);  // "" or the error
+    void showTexture(const std::string& textureOrLayer);     // the Pipeline panel's click
+    FloatImage readSource(const std::string& name, int level);  // registry layer (decoded), reference or path trace
+    std::vector<uint8_t> surfaceMask(const std::string& name, int level, bool* applies);  // 0 = empty texel
+
+    ViewerOptions opt_;
+    GLFWwindow* window_ = nullptr;
+    bool imguiReady_ = false;
+    std::unique_ptr<Renderer> renderer_;
+    std::shared_ptr<Scene> scene_;
+    std::unique_ptr<BufferViewPass> views_[2];
+    Settings settings_;
+    CameraController ctl_, flySaved_;
+    std::string iniPath_;
+    std::string restoredScene_;
+
+    ui::ViewportState view_;
+    ui::SettingsPanelState settingsPanel_;
+    ui::ProfilerState profiler_;
+    ui::InspectorState inspector_;
+    bool captureBuffers_ = false;
+    std::string lastCapture_;
+    bool lastCaptureFailed_ = false;
+    std::string selectTab_;  // sidebar tab to bring to front (script "panel")
+    double statusTime_ = 0.0;
+
+    // Layout (window units) of the previous frame.
+    float vpX0_ = 0, vpY0_ = 0, vpX1_ = 1, vpY1_ = 1, headerH_ = 30.0f;
+    // Mouse drag state.
+    Drag drag_ = Drag::None;
+    double lastX_ = 0, lastY_ = 0;
+    bool leftLook_ = false;
+    float flySpeed_ = 1.0f;
+    // Shader reload / errors.
+    double lastPoll_ = 0.0;
+    std::string renderError_;
+    // Reference image for A/B.
+    gl::TextureHandle refTex_;
+    FloatImage refImage_;
+    float inspX0_ = 1, inspX1_ = 1;
+    ui::SidebarState sidebar_;
+    ui::PipelineGraph pipeline_;
+    ui::PipelinePanelState pipelinePanel_;
+    // Inspector caches: the error image and the empty-texel hatch, recomputed when their inputs change or twice a second.
+    gl::TextureHandle errTex_, maskTex_;
+    std::string errKey_, maskKey_;
+    double errTime_ = -1e9, maskTime_ = -1e9;
+    ui::ErrorView errLast_;
+    ui::EmptyMask maskLast_;
+    // "Path trace this view".
+    std::unique_ptr<ViewerPathTrace> pathTrace_;
+    ViewerPathTrace::Snapshot ptSnap_;
+    gl::TextureHandle ptTex_;
+    std::string ptFigures_;
+    double ptFiguresTime_ = -1e9;
+    int ptFiguresSamples_ = -1;
+    // Script.
+    ui::ScriptRunner script_;
+    std::string pendingShot_;
+    int convergePending_ = 0;
+    bool scriptPointerSet_ = false;     // the script owns the UI pointer (the real one, Xvfb's, is ignored)
+    glm::dvec2 scriptPointerAt_{-1e6};
+    bool scriptButtons_[3] = {false, false, false};
+    std::deque<std::pair<glm::dvec2, bool>> uiDrag_;  // pointer position and left button, one per frame
+    double scriptWheel_ = 0.0;          // notches for this frame, given to the window under scriptWheelAt_
+    glm::dvec2 scriptWheelAt_{0.0};
+    bool quit_ = false;
+    double lastFrameTime_ = 0.0;
+};
+
+double nowSeconds();
+// The Pipeline panel's graph from the renderer's passes, their reads/writes and last timings. The one place that
+// knows how the renderer exposes its passes (to be re-pointed at Renderer::graph() once it exists).
+ui::PipelineGraph pipelineGraph(const Renderer& renderer, const Settings& settings);
+// The path tracer renders the view at 1/kPathTraceDivisor of the frame's width and height.
+constexpr int kPathTraceDivisor = 4;
+
+}  // namespace deepgi
+#endif  // DEEPGI_HAVE_UI
