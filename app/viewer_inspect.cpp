@@ -64,7 +64,7 @@ std::vector<uint8_t> Viewer::surfaceMask(const std::string& name, int level, boo
     int layer = 0;
     // Per-layer screen buffers (G-buffer, radiosity, AO): a texel is empty where its layer's depth is the clear value.
     // The final images are excluded: their sky is the backdrop, which is data.
-    if (level != 0 || !reg.findLayer(name, &e, &layer) || e->decl.size != SizeRule::Screen || endsWith(e->decl.name, "Display") ||
+    if (level != 0 || !reg.findLayer(name, &e, &layer) || !e->decl.size.screenSized() || endsWith(e->decl.name, "Display") ||
         e->decl.name == "Final Radiance" || !reg.has("Depth"))
         return {};
     const std::string depthLayer = endsWith(name, " 2") ? "Depth 2" : "Depth 1";

@@ -1,5 +1,4 @@
-// The Pipeline panel's graph, filled from what the renderer exposes today: passes(), each pass's name(), reads(),
-// writes() and enabled(), and timings(). The lead re-points this one function at Renderer::graph() after merging.
+// The Pipeline panel's graph, filled from Renderer::graph() (the pass tables, in execution order) and timings().
 #ifdef DEEPGI_HAVE_UI
 #include "app/viewer_app.h"
 
@@ -9,7 +8,7 @@ namespace {
 // Settings that shape each pass (settings.def keys by prefix): shown when the pass is clicked.
 std::vector<std::string> settingKeysOf(const std::string& pass) {
     static const std::vector<std::pair<std::string, std::string>> prefix = {
-        {"Shadow maps", "light."}, {"Deep G-buffer", "gbuffer."}, {"Input radiance", "radiosity.bounce_damping"},
+        {"Shadow maps", "light."}, {"Probe update", "probes."}, {"Deep G-buffer", "gbuffer."}, {"Input radiance", "radiosity.bounce_damping"},
         {"Radiosity gather", "radiosity."}, {"Ambient occlusion", "ao."}, {"Bilateral blur", "blur."},
         {"Temporal blend", "temporal."}, {"Reproject radiance", "temporal."}, {"Composite", "composite."}};
     std::vector<std::string> keys;
@@ -23,12 +22,12 @@ std::vector<std::string> settingKeysOf(const std::string& pass) {
 
 ui::PipelineGraph pipelineGraph(const Renderer& renderer, const Settings&) {
     ui::PipelineGraph g;
-    for (const auto& pass : renderer.passes()) {
+    for (const auto& node : renderer.graph()) {  // the pass tables, in execution order
         ui::PipelineNode n;
-        n.name = pass->name();
-        n.reads = pass->reads();
-        n.writes = pass->writes();
-        n.enabled = pass->enabled(renderer.config());
+        n.name = node.name;
+        n.reads = node.reads;
+        n.writes = node.writes;
+        n.enabled = node.enabled;
         for (const auto& t : renderer.timings())
             if (t.name == n.name) n.ms = t.ms;
         n.settingKeys = settingKeysOf(n.name);

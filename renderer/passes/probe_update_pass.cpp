@@ -2,6 +2,9 @@
 
 #include "renderer/probes/probe_volume.h"
 
+#include <algorithm>
+#include <limits>
+
 namespace deepgi {
 
 void ProbeUpdatePass::table(const PipelineConfig& c, PassTable& t) const {
@@ -23,6 +26,17 @@ void ProbeUpdatePass::table(const PipelineConfig& c, PassTable& t) const {
 
 void ProbeUpdatePass::execute(FrameContext& ctx) {
     ProbeVolume& v = *ctx.probes;
+    if (ctx.shadowKey != lightKey_) {  // new lights (or a new volume): every probe starts over
+        if (lightKey_ != 0 && uploadedVolume_ == &v) v.resetHistory();
+        lightKey_ = ctx.shadowKey;
+    }
+    int fewest = std::numeric_limits<int>::max();
+    for (int i = 0; i < v.probeCount(); ++i)
+        if (v.state(i) == ProbeState::Active) fewest = std::min(fewest, v.updatesOf(i));
+    const int settle = ctx.settings.probeSettleUpdates;
+    const bool settled = settle > 0 && v.activeProbeCount() > 0 && fewest >= settle && uploadedVolume_ == &v &&
+                         uploadedGeneration_ == ctx.textures.generation();
+    if (settled) return;  // converged under these lights: nothing changes
     v.update(ctx.settings);
     const bool all = uploadedGeneration_ != ctx.textures.generation() || uploadedVolume_ != &v;
     v.uploadTextures(ctx.texture("Probe Irradiance"), ctx.texture("Probe Depth"), ctx.texture("Probe Data"), all);

@@ -16,6 +16,7 @@ public:
 
 private:
     uint64_t uploadedGeneration_ = 0;  // registry generation of the last full upload
+    uint64_t lightKey_ = 0;            // the lights the probes hold (FrameContext::shadowKey)
     const ProbeVolume* uploadedVolume_ = nullptr;
 };
 
