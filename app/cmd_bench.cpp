@@ -110,7 +110,7 @@ CommandRegistrar registrar("bench", "Speed against error: sweep configurations a
         }
         bench::BenchOptions& o = a->o;
         parseSize(a->size, o.width, o.height);
-        parseSize(a->wholeSize, o.wholeFrameWidth, o.wholeFrameHeight, true);
+        parseSize(a->wholeSize, o.wholeFrameWidth, o.wholeFrameHeight, true, "--whole-frame-size");
         o.base = a->settings.build();
         if (a->scenes.empty()) {
             o.views = {{std::string(DEEPGI_ASSET_DIR) + "/atrium/atrium.gltf", a->cameras.size() > 0 ? a->cameras[0] : "courtyard"},

@@ -1,7 +1,9 @@
 #include "app/options.h"
 
-#include <regex>
+#include "renderer/core/util.h"
+
 #include <stdexcept>
+#include <tuple>
 
 namespace deepgi {
 
@@ -21,13 +23,12 @@ Settings SettingsOptions::build() const {
 
 std::string defaultScenePath() { return std::string(DEEPGI_ASSET_DIR) + "/atrium/atrium.gltf"; }
 
-void parseSize(const std::string& text, int& w, int& h, bool allowZero) {
-    static const std::regex re(R"((\d{1,6})[xX](\d{1,6}))");
-    std::smatch m;
-    if (!std::regex_match(text, m, re)) throw std::runtime_error("--size expects WxH (e.g. 640x360), got '" + text + "'");
-    w = std::stoi(m[1]);
-    h = std::stoi(m[2]);
-    if (!allowZero && (w == 0 || h == 0)) throw std::runtime_error("--size " + text + ": width and height must be at least 1");
+void parseSize(const std::string& text, int& w, int& h, bool allowZero, const std::string& option) {
+    try {
+        std::tie(w, h) = parseImageSize(text, allowZero);
+    } catch (const std::runtime_error& e) {
+        throw std::runtime_error(option + ": " + e.what());
+    }
 }
 
 }  // namespace deepgi

@@ -1,7 +1,9 @@
 #include "bench/bench.h"
 
-#include "bench/canvas.h"
+#include "bench/draw.h"
 #include "bench/metrics.h"
+#include "bench/plot.h"
+#include "renderer/core/util.h"
 #include "renderer/gl/offscreen_context.h"
 #include "renderer/reference/path_tracer.h"
 #include "renderer/renderer.h"
@@ -25,26 +27,12 @@ namespace fs = std::filesystem;
 
 namespace {
 
-double median(std::vector<double> v) {
-    if (v.empty()) return 0.0;
-    std::sort(v.begin(), v.end());
-    return v.size() % 2 ? v[v.size() / 2] : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]);
-}
-
-uint64_t fnv(uint64_t h, const void* data, size_t n) {
-    const auto* p = static_cast<const unsigned char*>(data);
-    for (size_t i = 0; i < n; ++i) h = (h ^ p[i]) * 1099511628211ull;
-    return h;
-}
-template <class T>
-uint64_t fnvValue(uint64_t h, const T& v) { return fnv(h, &v, sizeof(v)); }
-
 uint64_t hashFile(uint64_t h, const fs::path& p) {
     std::ifstream f(p, std::ios::binary);
     std::vector<char> buf(1 << 16);
     while (f) {
         f.read(buf.data(), std::streamsize(buf.size()));
-        h = fnv(h, buf.data(), size_t(f.gcount()));
+        h = fnv1a(h, buf.data(), size_t(f.gcount()));
     }
     return h;
 }
@@ -96,21 +84,13 @@ Camera dolly(const Camera& c, float offset) {
 
 FloatImage readFinal(const Renderer& r) { return rgb(r.readFinalRadiance()); }
 
-std::vector<unsigned char> display8(const FloatImage& img) { return toSrgb8(img, 0.0f); }
-
-// Per-pixel relative error (grey) as a heat map, 1.0 = 100 %.
-std::vector<unsigned char> heatMap(const FloatImage& a, const FloatImage& ref) {
-    std::vector<unsigned char> px(size_t(a.width) * a.height * 3);
-    for (size_t i = 0; i < size_t(a.width) * a.height; ++i) {
-        double e = 0.0;
+// Per-pixel relative error (mean over channels of |a - r| / (|r| + 0.01)) as a heat map, 1 = 100 %.
+OIIO::ImageBuf heatMap(const FloatImage& a, const FloatImage& ref) {
+    std::vector<float> e(size_t(a.width) * a.height, 0.0f);
+    for (size_t i = 0; i < e.size(); ++i)
         for (int c = 0; c < 3; ++c)
-            e += std::abs(double(a.pixels[i * 3 + c]) - ref.pixels[i * 3 + c]) / (std::abs(ref.pixels[i * 3 + c]) + 1e-2);
-        const Rgb h = heat(e / 3.0);
-        px[i * 3] = h.r;
-        px[i * 3 + 1] = h.g;
-        px[i * 3 + 2] = h.b;
-    }
-    return px;
+            e[i] += float(std::abs(double(a.pixels[i * 3 + c]) - ref.pixels[i * 3 + c]) / (std::abs(ref.pixels[i * 3 + c]) + 1e-2) / 3.0);
+    return draw::heat(e, a.width, a.height);
 }
 
 const char* kGiPasses[] = {"Reproject radiance", "Input radiance", "Radiosity gather", "Bilateral blur", "Temporal blend"};
@@ -147,7 +127,7 @@ std::vector<BenchConfig> defaultConfigs() {
 
 std::string referenceKey(const Scene& scene, const Camera& camera, const Settings& s, int width, int height, int spp,
                          int bounces, uint64_t seed) {
-    uint64_t h = 1469598103934665603ull;
+    uint64_t h = kFnvOffset;
     if (!scene.sourcePath.empty() && fs::exists(scene.sourcePath)) {
         const fs::path src = fs::absolute(scene.sourcePath);
         h = hashFile(h, src);
@@ -158,18 +138,18 @@ std::string referenceKey(const Scene& scene, const Camera& camera, const Setting
         std::sort(side.begin(), side.end());
         for (const auto& p : side) {
             const std::string name = p.filename().string();
-            h = fnv(h, name.data(), name.size());
+            h = fnv1a(h, name.data(), name.size());
             h = hashFile(h, p);
         }
     } else {
-        h = fnvValue(h, scene.triangleCount());
+        h = fnv1aValue(h, scene.triangleCount());
     }
-    h = fnv(h, &camera.cameraToWorld[0][0], sizeof(float) * 16);
-    h = fnvValue(h, camera.perspective);
-    for (float v : {camera.yfov, camera.orthoHalfHeight, camera.znear, camera.zfar}) h = fnvValue(h, v);
-    for (int v : {width, height, spp, bounces}) h = fnvValue(h, v);
-    h = fnvValue(h, seed);
-    for (float v : {s.sunAzimuth, s.sunElevation, s.sunIntensity, s.lightScale, s.background}) h = fnvValue(h, v);
+    h = fnv1a(h, &camera.cameraToWorld[0][0], sizeof(float) * 16);
+    h = fnv1aValue(h, camera.perspective);
+    for (float v : {camera.yfov, camera.orthoHalfHeight, camera.znear, camera.zfar}) h = fnv1aValue(h, v);
+    for (int v : {width, height, spp, bounces}) h = fnv1aValue(h, v);
+    h = fnv1aValue(h, seed);
+    for (float v : {s.sunAzimuth, s.sunElevation, s.sunIntensity, s.lightScale, s.background}) h = fnv1aValue(h, v);
     return hex(h);
 }
 
@@ -502,7 +482,7 @@ BenchResult runBench(const BenchOptions& o) {
     }
 
     // ---- plots ----
-    const Rgb palette[] = {{31, 119, 180}, {214, 39, 40}, {44, 160, 44}, {148, 103, 189}, {255, 127, 14}};
+    const draw::Colour palette[] = {{0.12f, 0.47f, 0.71f}, {0.84f, 0.15f, 0.16f}, {0.17f, 0.63f, 0.17f}, {0.58f, 0.40f, 0.74f}, {1.0f, 0.5f, 0.05f}};
     for (int which = 0; which < 2; ++which) {
         std::vector<PlotSeries> series;
         for (size_t v = 0; v < views.size(); ++v) {
@@ -518,10 +498,10 @@ BenchResult runBench(const BenchOptions& o) {
                 }
             series.push_back(s);
         }
-        const Canvas c = speedErrorPlot(series, which == 0 ? "speed against error: final image" : "speed against error: indirect light",
+        const OIIO::ImageBuf c = speedErrorPlot(series, which == 0 ? "speed against error: final image" : "speed against error: indirect light",
                                         "median frame time (ms), " + std::to_string(o.width) + "x" + std::to_string(o.height),
                                         which == 0 ? "mean relative error of the final image" : "mean relative error of the indirect part");
-        c.savePng((fs::path(o.outDir) / (which == 0 ? "speed_error.png" : "speed_error_indirect.png")).string());
+        draw::savePng(c, (fs::path(o.outDir) / (which == 0 ? "speed_error.png" : "speed_error_indirect.png")).string());
     }
 
     // ---- image grids: reference | method | relative-error heat map ----
@@ -531,23 +511,23 @@ BenchResult runBench(const BenchOptions& o) {
             if (vd.finals.count(n)) rowsShown.push_back(n);
         if (rowsShown.empty() && !vd.finals.empty()) rowsShown.push_back(vd.finals.begin()->first);
         if (rowsShown.empty()) continue;
-        const int W = o.width, H = o.height, pad = 14;
-        Canvas cv(3 * W + 4, int(rowsShown.size()) * (H + pad) + 12, {255, 255, 255});
-        cv.text(2, 2, vd.label + ": reference | method | relative error (black 0, white >= 100%)", {0, 0, 0});
-        const auto refPx = display8(vd.ref.final);
+        const int W = o.width, H = o.height, pad = 16;
+        OIIO::ImageBuf cv = draw::canvas(3 * W + 4, int(rowsShown.size()) * (H + pad) + 16);
+        draw::text(cv, 2, 1, vd.label + ": reference | method | relative error (black 0, yellow >= 100%)");
+        const OIIO::ImageBuf refPx = draw::display(vd.ref.final);
         for (size_t i = 0; i < rowsShown.size(); ++i) {
-            const int y = 12 + int(i) * (H + pad);
+            const int y = 16 + int(i) * (H + pad);
             const FloatImage& img = vd.finals.at(rowsShown[i]);
             const BenchRow* row = findRow(result.rows, fs::path(vd.view.scenePath).stem().string(),
                                           vd.label.substr(vd.label.find('/') + 1), rowsShown[i]);
-            cv.text(2, y + 3, "reference " + std::to_string(o.spp) + " spp", {0, 0, 0});
-            cv.text(W + 4, y + 3, rowsShown[i] + (row ? "  " + fmt(row->totalMs, 1) + " ms" : ""), {0, 0, 0});
-            cv.text(2 * W + 4, y + 3, row ? "mean rel err " + fmt(row->meanRelErr) : "", {0, 0, 0});
-            cv.blit(0, y + pad - 2, W, H, 3, refPx);
-            cv.blit(W + 2, y + pad - 2, W, H, 3, display8(img));
-            cv.blit(2 * W + 4, y + pad - 2, W, H, 3, heatMap(img, vd.ref.final));
+            draw::text(cv, 2, y, "reference " + std::to_string(o.spp) + " spp", {0, 0, 0}, 11);
+            draw::text(cv, W + 4, y, rowsShown[i] + (row ? "  " + fmt(row->totalMs, 1) + " ms" : ""), {0, 0, 0}, 11);
+            draw::text(cv, 2 * W + 4, y, row ? "mean rel err " + fmt(row->meanRelErr) : "", {0, 0, 0}, 11);
+            draw::paste(cv, 0, y + pad - 2, refPx);
+            draw::paste(cv, W + 2, y + pad - 2, draw::display(img));
+            draw::paste(cv, 2 * W + 4, y + pad - 2, heatMap(img, vd.ref.final));
         }
-        cv.savePng((fs::path(o.outDir) / ("grid_" + slug(vd.label) + ".png")).string());
+        draw::savePng(cv, (fs::path(o.outDir) / ("grid_" + slug(vd.label) + ".png")).string());
     }
 
     // ---- results.md ----

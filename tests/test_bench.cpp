@@ -1,9 +1,10 @@
 // deepgi bench: metric functions on known images, the Pareto front, the reference cache and a tiny bench run.
 #include "bench/bench.h"
-#include "bench/canvas.h"
+#include "bench/draw.h"
 #include "bench/gi_figures.h"
 #include "bench/hard_suite.h"
 #include "bench/metrics.h"
+#include "bench/plot.h"
 #include "renderer/scene/gltf_loader.h"
 
 #include <gtest/gtest.h>
@@ -188,14 +189,38 @@ TEST(HardSuite, FloorReferenceIsCachedWithItsFloor) {
     fs::remove_all(dir);
 }
 
-TEST(BenchCanvas, TextAndHeat) {
-    Canvas c(40, 10, {255, 255, 255});
-    EXPECT_EQ(c.text(0, 0, "A1", {0, 0, 0}), 12);
-    // 'A' has its top row 01110: column 0 blank, column 1 set.
-    EXPECT_EQ(c.get(0, 0).r, 255);
-    EXPECT_EQ(c.get(1, 0).r, 0);
-    EXPECT_EQ(heat(0.0).r, 0);
-    EXPECT_GT(heat(1.0).g, 200);
+TEST(BenchDraw, TextHeatAndAxes) {
+    // Text (DejaVu Sans through OIIO) darkens pixels of a white canvas, and only near where it is drawn.
+    OIIO::ImageBuf c = draw::canvas(60, 20);
+    draw::text(c, 2, 2, "A1", {0, 0, 0}, 12);
+    float minLeft = 1.0f, minRight = 1.0f;
+    for (int y = 0; y < 20; ++y)
+        for (int x = 0; x < 60; ++x) {
+            float px[3];
+            c.getpixel(x, y, px, 3);
+            (x < 25 ? minLeft : minRight) = std::min(x < 25 ? minLeft : minRight, px[0]);
+        }
+    EXPECT_LT(minLeft, 0.5f);
+    EXPECT_EQ(minRight, 1.0f);
+    // The heat map is OIIO's inferno: 0 is near black, 1 a bright yellow, values clamped.
+    const OIIO::ImageBuf h = draw::heat({0.0f, 1.0f, 7.0f}, 3, 1);
+    float lo[3], hi[3], over[3];
+    h.getpixel(0, 0, lo, 3);
+    h.getpixel(1, 0, hi, 3);
+    h.getpixel(2, 0, over, 3);
+    EXPECT_LT(lo[0] + lo[1] + lo[2], 0.1f);
+    EXPECT_GT(hi[0], 0.9f);
+    EXPECT_GT(hi[1], 0.9f);
+    EXPECT_EQ(over[1], hi[1]);
+    // Axis maxima round up to 1, 2, 2.5, 5 x a power of ten, five ticks.
+    double mx, step;
+    niceAxis(0.31, mx, step);
+    EXPECT_DOUBLE_EQ(mx, 0.5);
+    EXPECT_DOUBLE_EQ(step, 0.1);
+    niceAxis(2.1, mx, step);
+    EXPECT_DOUBLE_EQ(mx, 2.5);
+    niceAxis(0.0, mx, step);
+    EXPECT_DOUBLE_EQ(mx, 1.0);
 }
 
 TEST(BenchReference, SecondCallHitsTheCache) {
