@@ -1,3 +1,5 @@
+// One file over 500 lines: the sweep, the paper's ratios and the report (CSV, Markdown, plots, grids) all read the same
+// rows and views of one run; the hard GI suite is its own file (hard_suite.cpp).
 #include "bench/bench.h"
 
 #include "bench/draw.h"
@@ -55,13 +57,6 @@ std::string fmt(double v, int prec = 3) {
     return b;
 }
 
-Settings buildSettings(const Settings& base, const BenchConfig& c) {
-    Settings s = base;
-    if (!c.preset.empty()) applyPreset(s, c.preset);
-    for (const auto& a : c.assignments) applyAssignment(s, a);
-    return s;
-}
-
 // key=value for every setting that differs from the defaults.
 std::string settingsText(const Settings& s) {
     const Settings def;
@@ -82,8 +77,6 @@ Camera dolly(const Camera& c, float offset) {
     return d;
 }
 
-FloatImage readFinal(const Renderer& r) { return rgb(r.readFinalRadiance()); }
-
 // Per-pixel relative error (mean over channels of |a - r| / (|r| + 0.01)) as a heat map, 1 = 100 %.
 OIIO::ImageBuf heatMap(const FloatImage& a, const FloatImage& ref) {
     std::vector<float> e(size_t(a.width) * a.height, 0.0f);
@@ -96,6 +89,15 @@ OIIO::ImageBuf heatMap(const FloatImage& a, const FloatImage& ref) {
 const char* kGiPasses[] = {"Reproject radiance", "Input radiance", "Radiosity gather", "Bilateral blur", "Temporal blend"};
 
 }  // namespace
+
+Settings configSettings(const Settings& base, const BenchConfig& c) {
+    Settings s = base;
+    if (!c.preset.empty()) applyPreset(s, c.preset);
+    for (const auto& a : c.assignments) applyAssignment(s, a);
+    return s;
+}
+
+FloatImage finalRgb(const Renderer& r) { return rgb(r.readFinalRadiance()); }
 
 std::vector<BenchConfig> defaultConfigs() {
     std::vector<BenchConfig> c = {
@@ -159,13 +161,9 @@ CachedReference cachedReference(const Scene& scene, const Camera& camera, const 
     const uint64_t seed = 1;
     r.path = (fs::path(cacheDir) / (referenceKey(scene, camera, s, width, height, spp, bounces, seed) + ".exr")).string();
     auto split = [&](const FloatImage& all) {
-        for (int k = 0; k < 3; ++k) {
-            FloatImage& dst = k == 0 ? r.final : k == 1 ? r.direct : r.indirect;
-            dst = FloatImage{all.width, all.height, 3, {}};
-            dst.pixels.resize(size_t(all.width) * all.height * 3);
-            for (size_t i = 0; i < size_t(all.width) * all.height; ++i)
-                for (int c = 0; c < 3; ++c) dst.pixels[i * 3 + c] = all.pixels[i * all.channels + k * 3 + c];
-        }
+        r.final = channelRange(all, 0);
+        r.direct = channelRange(all, 3);
+        r.indirect = channelRange(all, 6);
     };
     if (fs::exists(r.path)) {
         FloatImage all = readImage(r.path);
@@ -184,14 +182,7 @@ CachedReference cachedReference(const Scene& scene, const Camera& camera, const 
     o.progress = !quiet;
     const ReferenceResult res = renderReference(scene, camera, s, o);
     r.seconds = res.seconds;
-    FloatImage all{width, height, 9, {}};
-    all.pixels.resize(size_t(width) * height * 9);
-    for (size_t i = 0; i < size_t(width) * height; ++i)
-        for (int c = 0; c < 3; ++c) {
-            all.pixels[i * 9 + c] = res.final.pixels[i * res.final.channels + c];
-            all.pixels[i * 9 + 3 + c] = res.direct.pixels[i * res.direct.channels + c];
-            all.pixels[i * 9 + 6 + c] = res.indirect.pixels[i * res.indirect.channels + c];
-        }
+    const FloatImage all = stackRgb({&res.final, &res.direct, &res.indirect});
     fs::create_directories(cacheDir);
     const std::string tmp = r.path + ".tmp.exr";
     writeExr(tmp, all);
@@ -290,7 +281,7 @@ BenchResult runBench(const BenchOptions& o) {
 
         std::vector<std::pair<Settings, std::string>> done;  // settings already measured -> config name
         for (const BenchConfig& cfg : configs) {
-            const Settings s = buildSettings(o.base, cfg);
+            const Settings s = configSettings(o.base, cfg);
             BenchRow row;
             row.scene = sceneName;
             row.camera = camName;
@@ -323,7 +314,7 @@ BenchResult runBench(const BenchOptions& o) {
                     total += t.ms;
                 }
                 totals.push_back(total);
-                FloatImage img = readFinal(r);
+                FloatImage img = finalRgb(r);
                 if (!prev.pixels.empty()) changes.push_back(relativeChange(img, prev));
                 prev = std::move(img);
             }
@@ -340,7 +331,7 @@ BenchResult runBench(const BenchOptions& o) {
             for (int k = 1; k <= o.pathFrames; ++k) {
                 r.setCamera(dolly(cam, step * float(k)));
                 r.render(s);
-                if (pathRefs.count(k)) pathErr.push_back(meanRelativeError(readFinal(r), pathRefs[k]));
+                if (pathRefs.count(k)) pathErr.push_back(meanRelativeError(finalRgb(r), pathRefs[k]));
             }
             sum = 0.0;
             for (double e : pathErr) sum += e;
@@ -352,7 +343,7 @@ BenchResult runBench(const BenchOptions& o) {
             r.resetHistory();
             r.render(sd);
             r.render(sd);
-            const FloatImage direct = readFinal(r);
+            const FloatImage direct = finalRgb(r);
             const FloatImage indirect = subtract(final, direct);
             row.relMse = relativeMse(final, vd.ref.final);
             row.meanRelErr = meanRelativeError(final, vd.ref.final);
@@ -570,7 +561,7 @@ BenchResult runBench(const BenchOptions& o) {
             f << "\n";
         }
         f << "\n## Configurations\n\n| config | settings | what |\n|---|---|---|\n";
-        for (const BenchConfig& c : configs) f << "| " << c.name << " | " << settingsText(buildSettings(o.base, c)) << " | " << c.description << " |\n";
+        for (const BenchConfig& c : configs) f << "| " << c.name << " | " << settingsText(configSettings(o.base, c)) << " | " << c.description << " |\n";
         f << "\nFigures: `speed_error.png`, `speed_error_indirect.png` (Pareto front ringed and joined), `grid_<view>.png`.\n";
     }
     return result;

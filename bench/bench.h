@@ -12,6 +12,10 @@
 #include <string>
 #include <vector>
 
+namespace deepgi {
+class Renderer;
+}
+
 namespace deepgi::bench {
 
 struct BenchConfig {
@@ -22,6 +26,10 @@ struct BenchConfig {
 };
 // The default sweep (see docs/BENCHMARKS.md).
 std::vector<BenchConfig> defaultConfigs();
+// base <- the configuration's preset <- its assignments.
+Settings configSettings(const Settings& base, const BenchConfig& c);
+// The renderer's final radiance as linear RGB.
+FloatImage finalRgb(const Renderer& r);
 
 struct BenchView {
     std::string scenePath, camera;

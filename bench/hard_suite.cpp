@@ -111,13 +111,6 @@ CameraPath loadPath(const fs::path& file) {
     return p;
 }
 
-Settings configSettings(const Settings& base, const BenchConfig& c) {
-    Settings s = base;
-    if (!c.preset.empty()) applyPreset(s, c.preset);
-    for (const auto& a : c.assignments) applyAssignment(s, a);
-    return s;
-}
-
 enum class ViewKind { Normal, Dark, Furnace };
 
 struct View {
@@ -140,8 +133,6 @@ struct RunImages {
     std::vector<FloatImage> pathFinals, pathDirects;
 };
 
-FloatImage readFinal(const Renderer& r) { return rgb(r.readFinalRadiance()); }
-
 RunImages runView(Renderer& r, const Camera& cam, const Settings& s, const HardOptions& o, const CameraPath* path) {
     RunImages out;
     std::vector<double> totals;
@@ -155,7 +146,7 @@ RunImages runView(Renderer& r, const Camera& cam, const Settings& s, const HardO
         totals.push_back(t);
     }
     out.frameMs = median(totals);
-    out.final = readFinal(r);
+    out.final = finalRgb(r);
     std::vector<Camera> pathCams;
     if (path) {  // continues from the converged history
         for (int k = 1; k <= path->frames; ++k) {
@@ -163,7 +154,7 @@ RunImages runView(Renderer& r, const Camera& cam, const Settings& s, const HardO
             r.setCamera(c);
             r.render(s);
             if (std::find(path->referenceFrames.begin(), path->referenceFrames.end(), k) != path->referenceFrames.end()) {
-                out.pathFinals.push_back(readFinal(r));
+                out.pathFinals.push_back(finalRgb(r));
                 pathCams.push_back(c);
             }
         }
@@ -175,7 +166,7 @@ RunImages runView(Renderer& r, const Camera& cam, const Settings& s, const HardO
         r.resetHistory();
         r.render(sd);
         r.render(sd);
-        return readFinal(r);
+        return finalRgb(r);
     };
     out.direct = direct(cam);
     for (const Camera& c : pathCams) out.pathDirects.push_back(direct(c));
@@ -184,7 +175,7 @@ RunImages runView(Renderer& r, const Camera& cam, const Settings& s, const HardO
     r.setCamera(cam);
     r.resetHistory();
     for (int f = 0; f < o.frames; ++f) r.render(s1);
-    out.oneBounce = readFinal(r);
+    out.oneBounce = finalRgb(r);
     return out;
 }
 
@@ -247,12 +238,9 @@ FloorReference floorReference(const Scene& scene, const Camera& camera, const Se
     r.path = (fs::path(cacheDir) / (key + ".exr")).string();
     const std::string side = (fs::path(cacheDir) / (key + ".json")).string();
     auto split = [&](const FloatImage& all) {
-        for (int k = 0; k < 3; ++k) {
-            FloatImage& dst = k == 0 ? r.final : k == 1 ? r.direct : r.indirect;
-            dst = FloatImage{all.width, all.height, 3, std::vector<float>(size_t(all.width) * all.height * 3)};
-            for (size_t i = 0; i < size_t(all.width) * all.height; ++i)
-                for (int c = 0; c < 3; ++c) dst.pixels[i * 3 + c] = all.pixels[i * all.channels + k * 3 + c];
-        }
+        r.final = channelRange(all, 0);
+        r.direct = channelRange(all, 3);
+        r.indirect = channelRange(all, 6);
     };
     if (fs::exists(r.path) && fs::exists(side)) {
         FloatImage all = readImage(r.path);
@@ -295,13 +283,7 @@ FloorReference floorReference(const Scene& scene, const Camera& camera, const Se
     r.final = average(finals);
     r.direct = average(directs);
     r.indirect = average(indirects);
-    FloatImage all{width, height, 9, std::vector<float>(size_t(width) * height * 9)};
-    for (size_t i = 0; i < size_t(width) * height; ++i)
-        for (int c = 0; c < 3; ++c) {
-            all.pixels[i * 9 + c] = r.final.pixels[i * 3 + c];
-            all.pixels[i * 9 + 3 + c] = r.direct.pixels[i * 3 + c];
-            all.pixels[i * 9 + 6 + c] = r.indirect.pixels[i * 3 + c];
-        }
+    const FloatImage all = stackRgb({&r.final, &r.direct, &r.indirect});
     fs::create_directories(cacheDir);
     const std::string tmp = r.path + ".tmp.exr";
     writeExr(tmp, all);
