@@ -1,5 +1,3 @@
-// One file over 500 lines: the sweep, the paper's ratios and the report (CSV, Markdown, plots, grids) all read the same
-// rows and views of one run; the hard GI suite is its own file (hard_suite.cpp).
 #include "bench/bench.h"
 
 #include "bench/draw.h"
@@ -28,22 +26,6 @@ namespace deepgi::bench {
 namespace fs = std::filesystem;
 
 namespace {
-
-uint64_t hashFile(uint64_t h, const fs::path& p) {
-    std::ifstream f(p, std::ios::binary);
-    std::vector<char> buf(1 << 16);
-    while (f) {
-        f.read(buf.data(), std::streamsize(buf.size()));
-        h = fnv1a(h, buf.data(), size_t(f.gcount()));
-    }
-    return h;
-}
-
-std::string hex(uint64_t v) {
-    char b[17];
-    std::snprintf(b, sizeof b, "%016llx", (unsigned long long)v);
-    return b;
-}
 
 std::string slug(const std::string& s) {
     std::string o;
@@ -125,70 +107,6 @@ std::vector<BenchConfig> defaultConfigs() {
         c.push_back({"layer1_s" + std::to_string(n), "", {"gbuffer.layer2=false", "radiosity.samples=" + std::to_string(n)},
                      "one layer, " + std::to_string(n) + " taps (equal-time search)"});
     return c;
-}
-
-std::string referenceKey(const Scene& scene, const Camera& camera, const Settings& s, int width, int height, int spp,
-                         int bounces, uint64_t seed) {
-    uint64_t h = kFnvOffset;
-    if (!scene.sourcePath.empty() && fs::exists(scene.sourcePath)) {
-        const fs::path src = fs::absolute(scene.sourcePath);
-        h = hashFile(h, src);
-        // Buffers and textures beside the scene file (a .gltf's .bin and images).
-        std::vector<fs::path> side;
-        for (const auto& e : fs::directory_iterator(src.parent_path()))
-            if (e.is_regular_file() && e.path() != src && e.file_size() < (64u << 20)) side.push_back(e.path());
-        std::sort(side.begin(), side.end());
-        for (const auto& p : side) {
-            const std::string name = p.filename().string();
-            h = fnv1a(h, name.data(), name.size());
-            h = hashFile(h, p);
-        }
-    } else {
-        h = fnv1aValue(h, scene.triangleCount());
-    }
-    h = fnv1a(h, &camera.cameraToWorld[0][0], sizeof(float) * 16);
-    h = fnv1aValue(h, camera.perspective);
-    for (float v : {camera.yfov, camera.orthoHalfHeight, camera.znear, camera.zfar}) h = fnv1aValue(h, v);
-    for (int v : {width, height, spp, bounces}) h = fnv1aValue(h, v);
-    h = fnv1aValue(h, seed);
-    for (float v : {s.sunAzimuth, s.sunElevation, s.sunIntensity, s.lightScale, s.background}) h = fnv1aValue(h, v);
-    return hex(h);
-}
-
-CachedReference cachedReference(const Scene& scene, const Camera& camera, const Settings& s, int width, int height,
-                                int spp, int bounces, const std::string& cacheDir, bool quiet) {
-    CachedReference r;
-    const uint64_t seed = 1;
-    r.path = (fs::path(cacheDir) / (referenceKey(scene, camera, s, width, height, spp, bounces, seed) + ".exr")).string();
-    auto split = [&](const FloatImage& all) {
-        r.final = channelRange(all, 0);
-        r.direct = channelRange(all, 3);
-        r.indirect = channelRange(all, 6);
-    };
-    if (fs::exists(r.path)) {
-        FloatImage all = readImage(r.path);
-        if (all.width == width && all.height == height && all.channels == 9) {
-            split(all);
-            r.cacheHit = true;
-            return r;
-        }
-    }
-    ReferenceOptions o;
-    o.width = width;
-    o.height = height;
-    o.spp = spp;
-    o.maxBounces = bounces;
-    o.seed = seed;
-    o.progress = !quiet;
-    const ReferenceResult res = renderReference(scene, camera, s, o);
-    r.seconds = res.seconds;
-    const FloatImage all = stackRgb({&res.final, &res.direct, &res.indirect});
-    fs::create_directories(cacheDir);
-    const std::string tmp = r.path + ".tmp.exr";
-    writeExr(tmp, all);
-    fs::rename(tmp, r.path);
-    split(all);
-    return r;
 }
 
 std::vector<std::string> csvColumns(const std::vector<std::string>& passNames) {

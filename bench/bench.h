@@ -2,6 +2,7 @@
 // `deepgi bench`: speed against error. Renders a path-traced reference per view (cached), sweeps renderer
 // configurations, and measures per-pass time, memory, error against the reference (final image and indirect part),
 // temporal stability and the error along a short camera path. Writes results.csv, results.md, plots and grids.
+#include "bench/reference_cache.h"
 #include "renderer/core/camera.h"
 #include "renderer/core/image_io.h"
 #include "renderer/core/settings.h"
@@ -55,19 +56,6 @@ struct BenchOptions {
     std::string context = "osmesa";  // or "egl" (gl/offscreen_context.h)
     bool quiet = false;
 };
-
-// A reference from the cache, or rendered and stored there. The key hashes the scene file and the files beside it,
-// the camera, size, spp, bounces, seed and the light settings.
-struct CachedReference {
-    FloatImage final, direct, indirect;
-    bool cacheHit = false;
-    std::string path;
-    double seconds = 0.0;
-};
-std::string referenceKey(const Scene& scene, const Camera& camera, const Settings& s, int width, int height, int spp,
-                         int bounces, uint64_t seed);
-CachedReference cachedReference(const Scene& scene, const Camera& camera, const Settings& s, int width, int height,
-                                int spp, int bounces, const std::string& cacheDir, bool quiet = true);
 
 struct BenchRow {
     std::string scene, camera, config, sameAs, settingsText;

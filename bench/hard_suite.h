@@ -4,6 +4,7 @@
 // ratio of means, the same for one bounce against a 1-bounce reference, the thin wall's leak, the furnace's
 // deviation from its exact value, the image at scales 0.001 and 1000 against scale 1, a camera path, frame time.
 #include "bench/bench.h"
+#include "bench/reference_cache.h"
 #include "renderer/core/image_io.h"
 #include "renderer/core/settings.h"
 
@@ -43,18 +44,6 @@ struct HardRow {
     double vsScale1;                     // relative L1 of the final image against the same view at scale 1
     double pathIndRelL1, pathIndRatio;   // camera path: mean over its reference frames
 };
-
-// A cached reference with its noise floor.
-struct FloorReference {
-    FloatImage final, direct, indirect;
-    double floorFinal = 0, floorIndirect = 0;  // relL1 of two quarter-sample renders / sqrt(5)
-    double seconds = 0;                        // render time (when it was made)
-    bool cacheHit = false;
-    std::string path;
-};
-// Renders (or loads from cacheDir) a reference as 4 chunks of spp/4 samples with seeds 1..4, averaged.
-FloorReference floorReference(const Scene& scene, const Camera& camera, const Settings& s, int width, int height,
-                              int spp, int bounces, const std::string& cacheDir, bool quiet);
 
 struct HardResult {
     std::vector<HardRow> rows;
