@@ -166,7 +166,7 @@ RunImages runView(Renderer& r, const Camera& cam, const Settings& s, const HardO
     s1.damping = 1.0f;
     r.setCamera(cam);
     r.resetHistory();
-    for (int f = 0; f < o.frames; ++f) r.render(s1);
+    for (int f = 0; f < o.oneBounceFrames; ++f) r.render(s1);
     out.oneBounce = finalRgb(r);
     return out;
 }
@@ -222,8 +222,8 @@ std::vector<std::pair<std::string, std::string>> hardViews() {
 }
 
 HardResult runHardSuite(const HardOptions& o) {
-    if (o.frames < 2 || o.timedFrames < 1 || o.timedFrames > o.frames)
-        throw std::runtime_error("bench: need frames >= 2 and 1 <= timed frames <= frames");
+    if (o.frames < 2 || o.timedFrames < 1 || o.timedFrames > o.frames || o.oneBounceFrames < 1)
+        throw std::runtime_error("bench: need frames >= 2, 1 <= timed frames <= frames and one-bounce frames >= 1");
     const auto tStart = std::chrono::steady_clock::now();
     const fs::path assets = o.assetDir.empty() ? fs::path(DEEPGI_ASSET_DIR) : fs::path(o.assetDir);
     const std::string cacheDir = o.cacheDir.empty() ? (fs::path(o.outDir) / "cache").string() : o.cacheDir;
@@ -428,7 +428,8 @@ HardResult runHardSuite(const HardOptions& o) {
     }
     const double total = std::chrono::duration<double>(std::chrono::steady_clock::now() - tStart).count();
     std::ostringstream head;
-    head << "# deepgi bench --suite hard\n\n" << o.width << "x" << o.height << ", " << o.frames << " frames per run (frame time: median of the last "
+    head << "# deepgi bench --suite hard\n\n" << o.width << "x" << o.height << ", " << o.frames << " frames per run (" << o.oneBounceFrames
+         << " for one bounce; frame time: median of the last "
          << o.timedFrames << ", wall clock), figures of ../shared/docs/gi-accuracy.md: indirect = final - direct (the same "
          << "configuration with radiosity.enabled=false) against reference final - deepgi direct; relL1 over 4x4 block means of "
          << "luminance; 1b = radiosity.bounce_damping=1 against a 1-bounce reference; scaled scenes use the scale-1 reference "

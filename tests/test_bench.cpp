@@ -13,6 +13,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <sstream>
 #include <unistd.h>
 
@@ -186,6 +187,35 @@ TEST(HardSuite, FloorReferenceIsCachedWithItsFloor) {
     EXPECT_EQ(a.final.pixels, b.final.pixels);
     EXPECT_DOUBLE_EQ(a.floorIndirect, b.floorIndirect);
     EXPECT_THROW(floorReference(scene, cam, Settings{}, 16, 8, 2, 8, dir.string(), true), std::invalid_argument);
+    fs::remove_all(dir);
+}
+
+TEST(HardSuite, FurnaceRunWritesItsFiguresAndBadScalesAreErrors) {
+    // The furnace needs no reference (its answer is exact), so the suite's wiring runs in seconds.
+    const fs::path dir = tempDir("hard");
+    const std::string base = std::string(DEEPGI_BINARY) + " bench --suite hard --hard-scenes furnace --size 32x18 --frames 4"
+                             " --timed-frames 2 --one-bounce-frames 2 --quiet --out " + dir.string();
+    const std::string cmd = base + " --scales 1,1000 > " + (dir / "log.txt").string() + " 2>&1";
+    ASSERT_EQ(std::system(cmd.c_str()), 0) << cmd;
+    for (const char* f : {"results_hard.md", "results_hard.csv", "grid_furnace_inside.png", "grid_furnace_inside_s1000.png"})
+        EXPECT_TRUE(fs::exists(dir / f)) << f;
+    std::ifstream csv(dir / "results_hard.csv");
+    std::string header, line;
+    std::getline(csv, header);
+    for (const char* col : {"ind_rel_l1", "ind_ratio", "one_rel_l1", "one_ratio", "leak_mean_rel", "furnace_max_dev", "vs_scale1", "frame_ms"})
+        EXPECT_NE(header.find(col), std::string::npos) << col;
+    std::vector<std::string> rows;
+    while (std::getline(csv, line))
+        if (!line.empty()) rows.push_back(line);
+    ASSERT_EQ(rows.size(), 2u);
+    EXPECT_EQ(rows[0].rfind("furnace,inside,default,1,", 0), 0u) << rows[0];
+    EXPECT_EQ(rows[1].rfind("furnace,inside,default,1000,", 0), 0u) << rows[1];
+    // A scale the generator does not write is refused with a message naming the option.
+    const std::string bad = base + " --scales 2 > " + (dir / "bad.txt").string() + " 2>&1";
+    EXPECT_NE(std::system(bad.c_str()), 0);
+    std::ifstream b(dir / "bad.txt");
+    const std::string msg((std::istreambuf_iterator<char>(b)), std::istreambuf_iterator<char>());
+    EXPECT_NE(msg.find("--scales"), std::string::npos) << msg;
     fs::remove_all(dir);
 }
 
