@@ -18,7 +18,7 @@ struct BenchArgs {
     bool list = false;
     std::string suite = "standard";
     std::string hardScenes, scales = "1,0.001,1000";
-    int oneBounceSpp = 1024;
+    int oneBounceSpp = 1024, oneBounceFrames = 60;
     bool noPath = false;
     SettingsOptions settings;
     bench::BenchOptions o;
@@ -59,6 +59,7 @@ int runHard(BenchArgs& a, const CLI::App& sub) {
     if (sub.count("--bounces")) h.bounces = a.o.bounces;
     if (sub.count("--path-spp")) h.pathSpp = a.o.pathSpp;
     h.oneBounceSpp = a.oneBounceSpp;
+    h.oneBounceFrames = a.oneBounceFrames;
     h.cameraPath = !a.noPath;
     h.outDir = sub.count("--out") ? a.o.outDir : "out/bench_hard";
     h.cacheDir = a.o.cacheDir;
@@ -80,12 +81,12 @@ CommandRegistrar registrar("bench", "Speed against error: sweep configurations a
     sub.add_option("--camera", a->cameras, "Camera of each --scene, in order (default: courtyard and front; '' = the scene's first)");
     sub.add_option("--camera-file", a->cameraFiles, "Camera JSON of each --scene, in order (a viewer capture's camera.json); wins over --camera");
     sub.add_option("--size", a->size, "Image size WxH")->capture_default_str();
-    sub.add_option("--frames", a->o.frames, "Frames per configuration (still camera)")->capture_default_str()->check(CLI::Range(2, 10000));
-    sub.add_option("--timed-frames", a->o.timedFrames, "The last frames: timing medians and stability")->capture_default_str()->check(CLI::Range(1, 10000));
-    sub.add_option("--spp", a->o.spp, "Reference samples per pixel")->capture_default_str()->check(CLI::Range(1, 1 << 20));
-    sub.add_option("--bounces", a->o.bounces, "Reference bounces")->capture_default_str()->check(CLI::Range(0, 1000));
+    sub.add_option("--frames", a->o.frames, "Frames per configuration (still camera; --suite hard: 200)")->capture_default_str()->check(CLI::Range(2, 10000));
+    sub.add_option("--timed-frames", a->o.timedFrames, "The last frames: timing medians and stability (--suite hard: 20)")->capture_default_str()->check(CLI::Range(1, 10000));
+    sub.add_option("--spp", a->o.spp, "Reference samples per pixel (--suite hard: 1024)")->capture_default_str()->check(CLI::Range(1, 1 << 20));
+    sub.add_option("--bounces", a->o.bounces, "Reference bounces (--suite hard: 128)")->capture_default_str()->check(CLI::Range(0, 1000));
     sub.add_option("--path-frames", a->o.pathFrames, "Frames of the sideways camera path (0 = none)")->capture_default_str()->check(CLI::Range(0, 1000));
-    sub.add_option("--path-spp", a->o.pathSpp, "Samples per pixel of the path references")->capture_default_str()->check(CLI::Range(1, 1 << 20));
+    sub.add_option("--path-spp", a->o.pathSpp, "Samples per pixel of the path references (--suite hard: 256)")->capture_default_str()->check(CLI::Range(1, 1 << 20));
     sub.add_option("--configs", a->configs, "Comma-separated configurations to run (default: all; see --list)");
     sub.add_flag("--list", a->list, "List the configurations and exit");
     sub.add_option("--suite", a->suite, "standard (atrium and Cornell box sweep) or hard (the hard GI scenes of assets/hard: "
@@ -94,9 +95,10 @@ CommandRegistrar registrar("bench", "Speed against error: sweep configurations a
     sub.add_option("--hard-scenes", a->hardScenes, "--suite hard: comma-separated scenes (offscreen_light, thin_wall, hidden_emitter, sun_patch, furnace; default all)");
     sub.add_option("--scales", a->scales, "--suite hard: comma-separated scales among 1, 0.001, 1000")->capture_default_str();
     sub.add_option("--one-bounce-spp", a->oneBounceSpp, "--suite hard: samples per pixel of the 1-bounce references")->capture_default_str()->check(CLI::Range(4, 1 << 20));
+    sub.add_option("--one-bounce-frames", a->oneBounceFrames, "--suite hard: frames of the one-bounce runs (no feedback to converge)")->capture_default_str()->check(CLI::Range(1, 10000));
     sub.add_flag("--no-path", a->noPath, "--suite hard: skip the camera path");
     sub.add_option("--whole-frame-size", a->wholeSize, "Size of the whole-frame check of the first scene, balanced preset (0x0 = skip)")->capture_default_str();
-    sub.add_option("--out", a->o.outDir, "Output folder")->capture_default_str();
+    sub.add_option("--out", a->o.outDir, "Output folder (--suite hard: out/bench_hard)")->capture_default_str();
     sub.add_option("--cache", a->o.cacheDir, "Reference cache folder (default: OUT/cache)");
     sub.add_option("--shaders", a->o.shaderDir, "Shader folder (default: the source tree's shaders/)");
     sub.add_flag("--quiet", a->o.quiet, "No progress output");
@@ -111,7 +113,7 @@ CommandRegistrar registrar("bench", "Speed against error: sweep configurations a
         }
         bench::BenchOptions& o = a->o;
         parseSize(a->size, o.width, o.height);
-        parseSize(a->wholeSize, o.wholeFrameWidth, o.wholeFrameHeight, true);
+        parseSize(a->wholeSize, o.wholeFrameWidth, o.wholeFrameHeight, true, "--whole-frame-size");
         o.base = a->settings.build();
         if (a->scenes.empty()) {
             o.views = {{std::string(DEEPGI_ASSET_DIR) + "/atrium/atrium.gltf", a->cameras.size() > 0 ? a->cameras[0] : "courtyard"},

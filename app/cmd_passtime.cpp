@@ -5,6 +5,7 @@
 #include "app/command.h"
 #include "app/options.h"
 #include "bench/metrics.h"
+#include "renderer/core/util.h"
 #include "renderer/gl/headless_context.h"
 #include "renderer/renderer.h"
 #include "renderer/scene/gltf_loader.h"
@@ -18,18 +19,6 @@
 
 namespace deepgi {
 namespace {
-
-double threadCpuMs() {
-    timespec ts{};
-    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
-    return double(ts.tv_sec) * 1e3 + double(ts.tv_nsec) * 1e-6;
-}
-
-double median(std::vector<double> v) {
-    if (v.empty()) return 0.0;
-    std::sort(v.begin(), v.end());
-    return v.size() % 2 ? v[v.size() / 2] : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]);
-}
 
 struct PassTimeArgs {
     std::string scene, camera = "courtyard", size = "640x360", shadersA, shadersB, passes;

@@ -1,9 +1,9 @@
 #include "app/options.h"
 
-#include "renderer/reference/path_tracer.h"
+#include "renderer/core/util.h"
 
-#include <tuple>
 #include <stdexcept>
+#include <tuple>
 
 namespace deepgi {
 
@@ -23,15 +23,11 @@ Settings SettingsOptions::build() const {
 
 std::string defaultScenePath() { return std::string(DEEPGI_ASSET_DIR) + "/atrium/atrium.gltf"; }
 
-void parseSize(const std::string& text, int& w, int& h, bool allowZero) {
-    if (allowZero && (text == "0x0" || text == "0X0")) {
-        w = h = 0;
-        return;
-    }
+void parseSize(const std::string& text, int& w, int& h, bool allowZero, const std::string& option) {
     try {
-        std::tie(w, h) = parseImageSize(text);  // the one WxH parser (render, reference, bench, view, buffers)
+        std::tie(w, h) = parseImageSize(text, allowZero);
     } catch (const std::runtime_error& e) {
-        throw std::runtime_error(std::string("--size: ") + e.what() + (allowZero ? " (or 0x0 for none)" : ""));
+        throw std::runtime_error(option + ": " + e.what());
     }
 }
 

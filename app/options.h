@@ -17,7 +17,8 @@ struct SettingsOptions {
 };
 
 std::string defaultScenePath();
-// "WxH" -> width, height; throws std::runtime_error naming the text for anything else (0 allowed if allowZero).
-void parseSize(const std::string& text, int& w, int& h, bool allowZero = false);
+// "WxH" -> width, height through parseImageSize (renderer/core/util.h): 1..65536 each (0 allowed if allowZero),
+// std::runtime_error naming the option and the text for anything else.
+void parseSize(const std::string& text, int& w, int& h, bool allowZero = false, const std::string& option = "--size");
 
 }  // namespace deepgi

@@ -1,6 +1,7 @@
 #include "app/render_job.h"
 
 #include "renderer/core/image_io.h"
+#include "renderer/core/util.h"
 #include "renderer/gl/offscreen_context.h"
 #include "renderer/renderer.h"
 #include "renderer/scene/gltf_loader.h"
@@ -15,12 +16,6 @@
 #include <stdexcept>
 
 namespace deepgi {
-
-static double median(std::vector<double> v) {
-    if (v.empty()) return 0.0;
-    std::sort(v.begin(), v.end());
-    return v.size() % 2 ? v[v.size() / 2] : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]);
-}
 
 static std::string fileNameFor(const std::string& layer) {
     std::string s;

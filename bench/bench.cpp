@@ -1,7 +1,9 @@
 #include "bench/bench.h"
 
-#include "bench/canvas.h"
+#include "bench/draw.h"
 #include "bench/metrics.h"
+#include "bench/plot.h"
+#include "renderer/core/util.h"
 #include "renderer/gl/offscreen_context.h"
 #include "renderer/reference/path_tracer.h"
 #include "renderer/renderer.h"
@@ -25,36 +27,6 @@ namespace fs = std::filesystem;
 
 namespace {
 
-double median(std::vector<double> v) {
-    if (v.empty()) return 0.0;
-    std::sort(v.begin(), v.end());
-    return v.size() % 2 ? v[v.size() / 2] : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]);
-}
-
-uint64_t fnv(uint64_t h, const void* data, size_t n) {
-    const auto* p = static_cast<const unsigned char*>(data);
-    for (size_t i = 0; i < n; ++i) h = (h ^ p[i]) * 1099511628211ull;
-    return h;
-}
-template <class T>
-uint64_t fnvValue(uint64_t h, const T& v) { return fnv(h, &v, sizeof(v)); }
-
-uint64_t hashFile(uint64_t h, const fs::path& p) {
-    std::ifstream f(p, std::ios::binary);
-    std::vector<char> buf(1 << 16);
-    while (f) {
-        f.read(buf.data(), std::streamsize(buf.size()));
-        h = fnv(h, buf.data(), size_t(f.gcount()));
-    }
-    return h;
-}
-
-std::string hex(uint64_t v) {
-    char b[17];
-    std::snprintf(b, sizeof b, "%016llx", (unsigned long long)v);
-    return b;
-}
-
 std::string slug(const std::string& s) {
     std::string o;
     for (char c : s) o += std::isalnum((unsigned char)c) ? char(std::tolower((unsigned char)c)) : '_';
@@ -65,13 +37,6 @@ std::string fmt(double v, int prec = 3) {
     char b[64];
     std::snprintf(b, sizeof b, "%.*f", prec, v);
     return b;
-}
-
-Settings buildSettings(const Settings& base, const BenchConfig& c) {
-    Settings s = base;
-    if (!c.preset.empty()) applyPreset(s, c.preset);
-    for (const auto& a : c.assignments) applyAssignment(s, a);
-    return s;
 }
 
 // key=value for every setting that differs from the defaults.
@@ -94,28 +59,27 @@ Camera dolly(const Camera& c, float offset) {
     return d;
 }
 
-FloatImage readFinal(const Renderer& r) { return rgb(r.readFinalRadiance()); }
-
-std::vector<unsigned char> display8(const FloatImage& img) { return toSrgb8(img, 0.0f); }
-
-// Per-pixel relative error (grey) as a heat map, 1.0 = 100 %.
-std::vector<unsigned char> heatMap(const FloatImage& a, const FloatImage& ref) {
-    std::vector<unsigned char> px(size_t(a.width) * a.height * 3);
-    for (size_t i = 0; i < size_t(a.width) * a.height; ++i) {
-        double e = 0.0;
+// Per-pixel relative error (mean over channels of |a - r| / (|r| + 0.01)) as a heat map, 1 = 100 %.
+OIIO::ImageBuf heatMap(const FloatImage& a, const FloatImage& ref) {
+    std::vector<float> e(size_t(a.width) * a.height, 0.0f);
+    for (size_t i = 0; i < e.size(); ++i)
         for (int c = 0; c < 3; ++c)
-            e += std::abs(double(a.pixels[i * 3 + c]) - ref.pixels[i * 3 + c]) / (std::abs(ref.pixels[i * 3 + c]) + 1e-2);
-        const Rgb h = heat(e / 3.0);
-        px[i * 3] = h.r;
-        px[i * 3 + 1] = h.g;
-        px[i * 3 + 2] = h.b;
-    }
-    return px;
+            e[i] += float(std::abs(double(a.pixels[i * 3 + c]) - ref.pixels[i * 3 + c]) / (std::abs(ref.pixels[i * 3 + c]) + 1e-2) / 3.0);
+    return draw::heat(e, a.width, a.height);
 }
 
 const char* kGiPasses[] = {"Reproject radiance", "Input radiance", "Radiosity gather", "Bilateral blur", "Temporal blend"};
 
 }  // namespace
+
+Settings configSettings(const Settings& base, const BenchConfig& c) {
+    Settings s = base;
+    if (!c.preset.empty()) applyPreset(s, c.preset);
+    for (const auto& a : c.assignments) applyAssignment(s, a);
+    return s;
+}
+
+FloatImage finalRgb(const Renderer& r) { return rgb(r.readFinalRadiance()); }
 
 std::vector<BenchConfig> defaultConfigs() {
     std::vector<BenchConfig> c = {
@@ -143,81 +107,6 @@ std::vector<BenchConfig> defaultConfigs() {
         c.push_back({"layer1_s" + std::to_string(n), "", {"gbuffer.layer2=false", "radiosity.samples=" + std::to_string(n)},
                      "one layer, " + std::to_string(n) + " taps (equal-time search)"});
     return c;
-}
-
-std::string referenceKey(const Scene& scene, const Camera& camera, const Settings& s, int width, int height, int spp,
-                         int bounces, uint64_t seed) {
-    uint64_t h = 1469598103934665603ull;
-    if (!scene.sourcePath.empty() && fs::exists(scene.sourcePath)) {
-        const fs::path src = fs::absolute(scene.sourcePath);
-        h = hashFile(h, src);
-        // Buffers and textures beside the scene file (a .gltf's .bin and images).
-        std::vector<fs::path> side;
-        for (const auto& e : fs::directory_iterator(src.parent_path()))
-            if (e.is_regular_file() && e.path() != src && e.file_size() < (64u << 20)) side.push_back(e.path());
-        std::sort(side.begin(), side.end());
-        for (const auto& p : side) {
-            const std::string name = p.filename().string();
-            h = fnv(h, name.data(), name.size());
-            h = hashFile(h, p);
-        }
-    } else {
-        h = fnvValue(h, scene.triangleCount());
-    }
-    h = fnv(h, &camera.cameraToWorld[0][0], sizeof(float) * 16);
-    h = fnvValue(h, camera.perspective);
-    for (float v : {camera.yfov, camera.orthoHalfHeight, camera.znear, camera.zfar}) h = fnvValue(h, v);
-    for (int v : {width, height, spp, bounces}) h = fnvValue(h, v);
-    h = fnvValue(h, seed);
-    for (float v : {s.sunAzimuth, s.sunElevation, s.sunIntensity, s.lightScale, s.background}) h = fnvValue(h, v);
-    return hex(h);
-}
-
-CachedReference cachedReference(const Scene& scene, const Camera& camera, const Settings& s, int width, int height,
-                                int spp, int bounces, const std::string& cacheDir, bool quiet) {
-    CachedReference r;
-    const uint64_t seed = 1;
-    r.path = (fs::path(cacheDir) / (referenceKey(scene, camera, s, width, height, spp, bounces, seed) + ".exr")).string();
-    auto split = [&](const FloatImage& all) {
-        for (int k = 0; k < 3; ++k) {
-            FloatImage& dst = k == 0 ? r.final : k == 1 ? r.direct : r.indirect;
-            dst = FloatImage{all.width, all.height, 3, {}};
-            dst.pixels.resize(size_t(all.width) * all.height * 3);
-            for (size_t i = 0; i < size_t(all.width) * all.height; ++i)
-                for (int c = 0; c < 3; ++c) dst.pixels[i * 3 + c] = all.pixels[i * all.channels + k * 3 + c];
-        }
-    };
-    if (fs::exists(r.path)) {
-        FloatImage all = readImage(r.path);
-        if (all.width == width && all.height == height && all.channels == 9) {
-            split(all);
-            r.cacheHit = true;
-            return r;
-        }
-    }
-    ReferenceOptions o;
-    o.width = width;
-    o.height = height;
-    o.spp = spp;
-    o.maxBounces = bounces;
-    o.seed = seed;
-    o.progress = !quiet;
-    const ReferenceResult res = renderReference(scene, camera, s, o);
-    r.seconds = res.seconds;
-    FloatImage all{width, height, 9, {}};
-    all.pixels.resize(size_t(width) * height * 9);
-    for (size_t i = 0; i < size_t(width) * height; ++i)
-        for (int c = 0; c < 3; ++c) {
-            all.pixels[i * 9 + c] = res.final.pixels[i * res.final.channels + c];
-            all.pixels[i * 9 + 3 + c] = res.direct.pixels[i * res.direct.channels + c];
-            all.pixels[i * 9 + 6 + c] = res.indirect.pixels[i * res.indirect.channels + c];
-        }
-    fs::create_directories(cacheDir);
-    const std::string tmp = r.path + ".tmp.exr";
-    writeExr(tmp, all);
-    fs::rename(tmp, r.path);
-    split(all);
-    return r;
 }
 
 std::vector<std::string> csvColumns(const std::vector<std::string>& passNames) {
@@ -310,7 +199,7 @@ BenchResult runBench(const BenchOptions& o) {
 
         std::vector<std::pair<Settings, std::string>> done;  // settings already measured -> config name
         for (const BenchConfig& cfg : configs) {
-            const Settings s = buildSettings(o.base, cfg);
+            const Settings s = configSettings(o.base, cfg);
             BenchRow row;
             row.scene = sceneName;
             row.camera = camName;
@@ -343,7 +232,7 @@ BenchResult runBench(const BenchOptions& o) {
                     total += t.ms;
                 }
                 totals.push_back(total);
-                FloatImage img = readFinal(r);
+                FloatImage img = finalRgb(r);
                 if (!prev.pixels.empty()) changes.push_back(relativeChange(img, prev));
                 prev = std::move(img);
             }
@@ -360,7 +249,7 @@ BenchResult runBench(const BenchOptions& o) {
             for (int k = 1; k <= o.pathFrames; ++k) {
                 r.setCamera(dolly(cam, step * float(k)));
                 r.render(s);
-                if (pathRefs.count(k)) pathErr.push_back(meanRelativeError(readFinal(r), pathRefs[k]));
+                if (pathRefs.count(k)) pathErr.push_back(meanRelativeError(finalRgb(r), pathRefs[k]));
             }
             sum = 0.0;
             for (double e : pathErr) sum += e;
@@ -372,7 +261,7 @@ BenchResult runBench(const BenchOptions& o) {
             r.resetHistory();
             r.render(sd);
             r.render(sd);
-            const FloatImage direct = readFinal(r);
+            const FloatImage direct = finalRgb(r);
             const FloatImage indirect = subtract(final, direct);
             row.relMse = relativeMse(final, vd.ref.final);
             row.meanRelErr = meanRelativeError(final, vd.ref.final);
@@ -502,7 +391,7 @@ BenchResult runBench(const BenchOptions& o) {
     }
 
     // ---- plots ----
-    const Rgb palette[] = {{31, 119, 180}, {214, 39, 40}, {44, 160, 44}, {148, 103, 189}, {255, 127, 14}};
+    const draw::Colour palette[] = {{0.12f, 0.47f, 0.71f}, {0.84f, 0.15f, 0.16f}, {0.17f, 0.63f, 0.17f}, {0.58f, 0.40f, 0.74f}, {1.0f, 0.5f, 0.05f}};
     for (int which = 0; which < 2; ++which) {
         std::vector<PlotSeries> series;
         for (size_t v = 0; v < views.size(); ++v) {
@@ -518,10 +407,10 @@ BenchResult runBench(const BenchOptions& o) {
                 }
             series.push_back(s);
         }
-        const Canvas c = speedErrorPlot(series, which == 0 ? "speed against error: final image" : "speed against error: indirect light",
+        const OIIO::ImageBuf c = speedErrorPlot(series, which == 0 ? "speed against error: final image" : "speed against error: indirect light",
                                         "median frame time (ms), " + std::to_string(o.width) + "x" + std::to_string(o.height),
                                         which == 0 ? "mean relative error of the final image" : "mean relative error of the indirect part");
-        c.savePng((fs::path(o.outDir) / (which == 0 ? "speed_error.png" : "speed_error_indirect.png")).string());
+        draw::savePng(c, (fs::path(o.outDir) / (which == 0 ? "speed_error.png" : "speed_error_indirect.png")).string());
     }
 
     // ---- image grids: reference | method | relative-error heat map ----
@@ -531,23 +420,23 @@ BenchResult runBench(const BenchOptions& o) {
             if (vd.finals.count(n)) rowsShown.push_back(n);
         if (rowsShown.empty() && !vd.finals.empty()) rowsShown.push_back(vd.finals.begin()->first);
         if (rowsShown.empty()) continue;
-        const int W = o.width, H = o.height, pad = 14;
-        Canvas cv(3 * W + 4, int(rowsShown.size()) * (H + pad) + 12, {255, 255, 255});
-        cv.text(2, 2, vd.label + ": reference | method | relative error (black 0, white >= 100%)", {0, 0, 0});
-        const auto refPx = display8(vd.ref.final);
+        const int W = o.width, H = o.height, pad = 16;
+        OIIO::ImageBuf cv = draw::canvas(3 * W + 4, int(rowsShown.size()) * (H + pad) + 16);
+        draw::text(cv, 2, 1, vd.label + ": reference | method | relative error (black 0, yellow >= 100%)");
+        const OIIO::ImageBuf refPx = draw::display(vd.ref.final);
         for (size_t i = 0; i < rowsShown.size(); ++i) {
-            const int y = 12 + int(i) * (H + pad);
+            const int y = 16 + int(i) * (H + pad);
             const FloatImage& img = vd.finals.at(rowsShown[i]);
             const BenchRow* row = findRow(result.rows, fs::path(vd.view.scenePath).stem().string(),
                                           vd.label.substr(vd.label.find('/') + 1), rowsShown[i]);
-            cv.text(2, y + 3, "reference " + std::to_string(o.spp) + " spp", {0, 0, 0});
-            cv.text(W + 4, y + 3, rowsShown[i] + (row ? "  " + fmt(row->totalMs, 1) + " ms" : ""), {0, 0, 0});
-            cv.text(2 * W + 4, y + 3, row ? "mean rel err " + fmt(row->meanRelErr) : "", {0, 0, 0});
-            cv.blit(0, y + pad - 2, W, H, 3, refPx);
-            cv.blit(W + 2, y + pad - 2, W, H, 3, display8(img));
-            cv.blit(2 * W + 4, y + pad - 2, W, H, 3, heatMap(img, vd.ref.final));
+            draw::text(cv, 2, y, "reference " + std::to_string(o.spp) + " spp", {0, 0, 0}, 11);
+            draw::text(cv, W + 4, y, rowsShown[i] + (row ? "  " + fmt(row->totalMs, 1) + " ms" : ""), {0, 0, 0}, 11);
+            draw::text(cv, 2 * W + 4, y, row ? "mean rel err " + fmt(row->meanRelErr) : "", {0, 0, 0}, 11);
+            draw::paste(cv, 0, y + pad - 2, refPx);
+            draw::paste(cv, W + 2, y + pad - 2, draw::display(img));
+            draw::paste(cv, 2 * W + 4, y + pad - 2, heatMap(img, vd.ref.final));
         }
-        cv.savePng((fs::path(o.outDir) / ("grid_" + slug(vd.label) + ".png")).string());
+        draw::savePng(cv, (fs::path(o.outDir) / ("grid_" + slug(vd.label) + ".png")).string());
     }
 
     // ---- results.md ----
@@ -590,7 +479,7 @@ BenchResult runBench(const BenchOptions& o) {
             f << "\n";
         }
         f << "\n## Configurations\n\n| config | settings | what |\n|---|---|---|\n";
-        for (const BenchConfig& c : configs) f << "| " << c.name << " | " << settingsText(buildSettings(o.base, c)) << " | " << c.description << " |\n";
+        for (const BenchConfig& c : configs) f << "| " << c.name << " | " << settingsText(configSettings(o.base, c)) << " | " << c.description << " |\n";
         f << "\nFigures: `speed_error.png`, `speed_error_indirect.png` (Pareto front ringed and joined), `grid_<view>.png`.\n";
     }
     return result;

@@ -2,6 +2,7 @@
 // `deepgi bench`: speed against error. Renders a path-traced reference per view (cached), sweeps renderer
 // configurations, and measures per-pass time, memory, error against the reference (final image and indirect part),
 // temporal stability and the error along a short camera path. Writes results.csv, results.md, plots and grids.
+#include "bench/reference_cache.h"
 #include "renderer/core/camera.h"
 #include "renderer/core/image_io.h"
 #include "renderer/core/settings.h"
@@ -11,6 +12,10 @@
 #include <map>
 #include <string>
 #include <vector>
+
+namespace deepgi {
+class Renderer;
+}
 
 namespace deepgi::bench {
 
@@ -22,6 +27,10 @@ struct BenchConfig {
 };
 // The default sweep (see docs/BENCHMARKS.md).
 std::vector<BenchConfig> defaultConfigs();
+// base <- the configuration's preset <- its assignments.
+Settings configSettings(const Settings& base, const BenchConfig& c);
+// The renderer's final radiance as linear RGB.
+FloatImage finalRgb(const Renderer& r);
 
 struct BenchView {
     std::string scenePath, camera;
@@ -48,19 +57,6 @@ struct BenchOptions {
     std::string context = "osmesa";  // or "egl" (gl/offscreen_context.h)
     bool quiet = false;
 };
-
-// A reference from the cache, or rendered and stored there. The key hashes the scene file and the files beside it,
-// the camera, size, spp, bounces, seed and the light settings.
-struct CachedReference {
-    FloatImage final, direct, indirect;
-    bool cacheHit = false;
-    std::string path;
-    double seconds = 0.0;
-};
-std::string referenceKey(const Scene& scene, const Camera& camera, const Settings& s, int width, int height, int spp,
-                         int bounces, uint64_t seed);
-CachedReference cachedReference(const Scene& scene, const Camera& camera, const Settings& s, int width, int height,
-                                int spp, int bounces, const std::string& cacheDir, bool quiet = true);
 
 struct BenchRow {
     std::string scene, camera, config, sameAs, settingsText;

@@ -51,14 +51,6 @@ std::string sceneDirName(const std::string& base, double scale) {
     return scale == 1.0 ? base : base + "_s" + scaleName(scale);
 }
 
-FloatImage average(const std::vector<FloatImage>& imgs) {
-    FloatImage out = imgs.at(0);
-    for (size_t k = 1; k < imgs.size(); ++k)
-        for (size_t i = 0; i < out.pixels.size(); ++i) out.pixels[i] += imgs[k].pixels[i];
-    for (float& v : out.pixels) v /= float(imgs.size());
-    return out;
-}
-
 double meanLuminance(const FloatImage& img) {
     const LumaImage l = luminance(img);
     double s = 0.0;
@@ -111,13 +103,6 @@ CameraPath loadPath(const fs::path& file) {
     return p;
 }
 
-Settings configSettings(const Settings& base, const BenchConfig& c) {
-    Settings s = base;
-    if (!c.preset.empty()) applyPreset(s, c.preset);
-    for (const auto& a : c.assignments) applyAssignment(s, a);
-    return s;
-}
-
 enum class ViewKind { Normal, Dark, Furnace };
 
 struct View {
@@ -140,8 +125,6 @@ struct RunImages {
     std::vector<FloatImage> pathFinals, pathDirects;
 };
 
-FloatImage readFinal(const Renderer& r) { return rgb(r.readFinalRadiance()); }
-
 RunImages runView(Renderer& r, const Camera& cam, const Settings& s, const HardOptions& o, const CameraPath* path) {
     RunImages out;
     std::vector<double> totals;
@@ -155,7 +138,7 @@ RunImages runView(Renderer& r, const Camera& cam, const Settings& s, const HardO
         totals.push_back(t);
     }
     out.frameMs = median(totals);
-    out.final = readFinal(r);
+    out.final = finalRgb(r);
     std::vector<Camera> pathCams;
     if (path) {  // continues from the converged history
         for (int k = 1; k <= path->frames; ++k) {
@@ -163,7 +146,7 @@ RunImages runView(Renderer& r, const Camera& cam, const Settings& s, const HardO
             r.setCamera(c);
             r.render(s);
             if (std::find(path->referenceFrames.begin(), path->referenceFrames.end(), k) != path->referenceFrames.end()) {
-                out.pathFinals.push_back(readFinal(r));
+                out.pathFinals.push_back(finalRgb(r));
                 pathCams.push_back(c);
             }
         }
@@ -175,7 +158,7 @@ RunImages runView(Renderer& r, const Camera& cam, const Settings& s, const HardO
         r.resetHistory();
         r.render(sd);
         r.render(sd);
-        return readFinal(r);
+        return finalRgb(r);
     };
     out.direct = direct(cam);
     for (const Camera& c : pathCams) out.pathDirects.push_back(direct(c));
@@ -183,8 +166,8 @@ RunImages runView(Renderer& r, const Camera& cam, const Settings& s, const HardO
     s1.damping = 1.0f;
     r.setCamera(cam);
     r.resetHistory();
-    for (int f = 0; f < o.frames; ++f) r.render(s1);
-    out.oneBounce = readFinal(r);
+    for (int f = 0; f < o.oneBounceFrames; ++f) r.render(s1);
+    out.oneBounce = finalRgb(r);
     return out;
 }
 
@@ -238,85 +221,9 @@ std::vector<std::pair<std::string, std::string>> hardViews() {
     return v;
 }
 
-FloorReference floorReference(const Scene& scene, const Camera& camera, const Settings& s, int width, int height, int spp,
-                              int bounces, const std::string& cacheDir, bool quiet) {
-    if (spp < 4) throw std::invalid_argument("bench: a reference with a noise floor needs at least 4 spp, got " + std::to_string(spp));
-    FloorReference r;
-    const uint64_t seedTag = 0x4c4f4f52;  // "FLOR": 4 chunks, seeds 1..4; never the same key as cachedReference
-    const std::string key = referenceKey(scene, camera, s, width, height, spp, bounces, seedTag);
-    r.path = (fs::path(cacheDir) / (key + ".exr")).string();
-    const std::string side = (fs::path(cacheDir) / (key + ".json")).string();
-    auto split = [&](const FloatImage& all) {
-        for (int k = 0; k < 3; ++k) {
-            FloatImage& dst = k == 0 ? r.final : k == 1 ? r.direct : r.indirect;
-            dst = FloatImage{all.width, all.height, 3, std::vector<float>(size_t(all.width) * all.height * 3)};
-            for (size_t i = 0; i < size_t(all.width) * all.height; ++i)
-                for (int c = 0; c < 3; ++c) dst.pixels[i * 3 + c] = all.pixels[i * all.channels + k * 3 + c];
-        }
-    };
-    if (fs::exists(r.path) && fs::exists(side)) {
-        FloatImage all = readImage(r.path);
-        std::ifstream f(side);
-        nlohmann::json j;
-        try {
-            f >> j;
-            if (all.width == width && all.height == height && all.channels == 9) {
-                split(all);
-                r.floorFinal = j.at("floor_final").get<double>();
-                r.floorIndirect = j.at("floor_indirect").get<double>();
-                r.seconds = j.at("seconds").get<double>();
-                r.cacheHit = true;
-                return r;
-            }
-        } catch (const std::exception&) {
-            // a broken side file: render again
-        }
-    }
-    ReferenceTracer tracer(scene);
-    std::vector<FloatImage> finals, directs, indirects;
-    const auto t0 = std::chrono::steady_clock::now();
-    for (uint64_t seed = 1; seed <= 4; ++seed) {
-        ReferenceOptions opt;
-        opt.width = width;
-        opt.height = height;
-        opt.spp = spp / 4;
-        opt.maxBounces = bounces;
-        opt.seed = seed;
-        opt.progress = false;
-        const ReferenceResult res = tracer.render(camera, s, opt);
-        finals.push_back(rgb(res.final));
-        directs.push_back(rgb(res.direct));
-        indirects.push_back(rgb(res.indirect));
-        if (!quiet) std::fprintf(stderr, "bench hard:   reference chunk %d/4 (%d spp) %.1f s\n", int(seed), opt.spp, res.seconds);
-    }
-    r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    r.floorFinal = noiseFloor(finals[0], finals[1]);
-    r.floorIndirect = noiseFloor(indirects[0], indirects[1]);
-    r.final = average(finals);
-    r.direct = average(directs);
-    r.indirect = average(indirects);
-    FloatImage all{width, height, 9, std::vector<float>(size_t(width) * height * 9)};
-    for (size_t i = 0; i < size_t(width) * height; ++i)
-        for (int c = 0; c < 3; ++c) {
-            all.pixels[i * 9 + c] = r.final.pixels[i * 3 + c];
-            all.pixels[i * 9 + 3 + c] = r.direct.pixels[i * 3 + c];
-            all.pixels[i * 9 + 6 + c] = r.indirect.pixels[i * 3 + c];
-        }
-    fs::create_directories(cacheDir);
-    const std::string tmp = r.path + ".tmp.exr";
-    writeExr(tmp, all);
-    fs::rename(tmp, r.path);
-    nlohmann::json j = {{"spp", spp},           {"bounces", bounces},   {"chunks", 4},
-                        {"seeds", {1, 2, 3, 4}}, {"seconds", r.seconds}, {"floor_final", std::isfinite(r.floorFinal) ? r.floorFinal : -1.0},
-                        {"floor_indirect", std::isfinite(r.floorIndirect) ? r.floorIndirect : -1.0},
-                        {"floor_note", "relative L1 (4x4 block means of luminance) of chunks 1 and 2 (spp/4 each) / sqrt(5)"}};
-    std::ofstream(side) << j.dump(1) << "\n";
-    return r;
-}
-
 HardResult runHardSuite(const HardOptions& o) {
-    if (o.frames < 2 || o.timedFrames < 1 || o.timedFrames > o.frames)
-        throw std::runtime_error("bench: need frames >= 2 and 1 <= timed frames <= frames");
+    if (o.frames < 2 || o.timedFrames < 1 || o.timedFrames > o.frames || o.oneBounceFrames < 1)
+        throw std::runtime_error("bench: need frames >= 2, 1 <= timed frames <= frames and one-bounce frames >= 1");
     const auto tStart = std::chrono::steady_clock::now();
     const fs::path assets = o.assetDir.empty() ? fs::path(DEEPGI_ASSET_DIR) : fs::path(o.assetDir);
     const std::string cacheDir = o.cacheDir.empty() ? (fs::path(o.outDir) / "cache").string() : o.cacheDir;
@@ -468,7 +375,11 @@ HardResult runHardSuite(const HardOptions& o) {
                     }
                 }
                 if (scale == 1.0) finalAtScale1[cfg.name] = run.final;
-                else if (finalAtScale1.count(cfg.name)) row.vsScale1 = relativeL1(run.final, finalAtScale1[cfg.name]);
+                else if (finalAtScale1.count(cfg.name)) {
+                    row.vsScale1 = relativeL1(run.final, finalAtScale1[cfg.name]);
+                    // Both black (no light at scale 1): the same image when this one is black too.
+                    if (std::isnan(row.vsScale1)) row.vsScale1 = leak(run.final).max == 0.0 ? 0.0 : std::numeric_limits<double>::infinity();
+                }
                 if (!run.pathFinals.empty()) {
                     double l1 = 0, ratio = 0;
                     for (size_t k = 0; k < run.pathFinals.size(); ++k) {
@@ -517,7 +428,8 @@ HardResult runHardSuite(const HardOptions& o) {
     }
     const double total = std::chrono::duration<double>(std::chrono::steady_clock::now() - tStart).count();
     std::ostringstream head;
-    head << "# deepgi bench --suite hard\n\n" << o.width << "x" << o.height << ", " << o.frames << " frames per run (frame time: median of the last "
+    head << "# deepgi bench --suite hard\n\n" << o.width << "x" << o.height << ", " << o.frames << " frames per run (" << o.oneBounceFrames
+         << " for one bounce; frame time: median of the last "
          << o.timedFrames << ", wall clock), figures of ../shared/docs/gi-accuracy.md: indirect = final - direct (the same "
          << "configuration with radiosity.enabled=false) against reference final - deepgi direct; relL1 over 4x4 block means of "
          << "luminance; 1b = radiosity.bounce_damping=1 against a 1-bounce reference; scaled scenes use the scale-1 reference "

@@ -4,6 +4,7 @@
 // ratio of means, the same for one bounce against a 1-bounce reference, the thin wall's leak, the furnace's
 // deviation from its exact value, the image at scales 0.001 and 1000 against scale 1, a camera path, frame time.
 #include "bench/bench.h"
+#include "bench/reference_cache.h"
 #include "renderer/core/image_io.h"
 #include "renderer/core/settings.h"
 
@@ -17,7 +18,9 @@ struct HardOptions {
     std::vector<double> scales = {1.0, 0.001, 1000.0};
     std::vector<std::string> configs;            // names from defaultConfigs(); empty = {"default"}
     int width = 320, height = 180;
-    int frames = 100;       // frames per run (still camera), so the temporal filter converges
+    int frames = 200;       // frames of the full run (still camera): the multi-bounce feedback converges slowly
+                            // (sun_patch: indirect ratio 1.48 after 60 frames, 1.65 after 200)
+    int oneBounceFrames = 60;  // one bounce has no feedback: temporal alpha 0.92 leaves 0.92^60 < 1 % of the start
     int timedFrames = 20;   // the last ones: frame time median
     int spp = 1024, bounces = 128;   // full references: 4 chunks of spp/4 with seeds 1..4 (noise floor)
     int oneBounceSpp = 1024;         // 1-bounce references (bounces = 1)
@@ -43,18 +46,6 @@ struct HardRow {
     double vsScale1;                     // relative L1 of the final image against the same view at scale 1
     double pathIndRelL1, pathIndRatio;   // camera path: mean over its reference frames
 };
-
-// A cached reference with its noise floor.
-struct FloorReference {
-    FloatImage final, direct, indirect;
-    double floorFinal = 0, floorIndirect = 0;  // relL1 of two quarter-sample renders / sqrt(5)
-    double seconds = 0;                        // render time (when it was made)
-    bool cacheHit = false;
-    std::string path;
-};
-// Renders (or loads from cacheDir) a reference as 4 chunks of spp/4 samples with seeds 1..4, averaged.
-FloorReference floorReference(const Scene& scene, const Camera& camera, const Settings& s, int width, int height,
-                              int spp, int bounces, const std::string& cacheDir, bool quiet);
 
 struct HardResult {
     std::vector<HardRow> rows;

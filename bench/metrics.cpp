@@ -99,6 +99,27 @@ FloatImage rgb(const FloatImage& img) {
     return d;
 }
 
+FloatImage channelRange(const FloatImage& img, int first, int count) {
+    if (first < 0 || count < 1 || first + count > img.channels)
+        throw std::invalid_argument("channelRange: channels " + std::to_string(first) + ".." + std::to_string(first + count - 1) +
+                                    " of a " + std::to_string(img.channels) + "-channel image");
+    FloatImage d{img.width, img.height, count, std::vector<float>(size_t(img.width) * img.height * count)};
+    for (size_t i = 0; i < size_t(img.width) * img.height; ++i)
+        for (int c = 0; c < count; ++c) d.pixels[i * count + c] = img.pixels[i * img.channels + first + c];
+    return d;
+}
+
+FloatImage stackRgb(const std::vector<const FloatImage*>& parts) {
+    if (parts.empty()) return {};
+    for (const FloatImage* p : parts) checkSameSize(*p, *parts[0]);
+    const int n = int(parts.size()) * 3;
+    FloatImage d{parts[0]->width, parts[0]->height, n, std::vector<float>(size_t(parts[0]->width) * parts[0]->height * n)};
+    for (size_t i = 0; i < size_t(d.width) * d.height; ++i)
+        for (size_t k = 0; k < parts.size(); ++k)
+            for (int c = 0; c < 3; ++c) d.pixels[i * n + k * 3 + c] = parts[k]->pixels[i * parts[k]->channels + c];
+    return d;
+}
+
 double relativeChange(const FloatImage& a, const FloatImage& b) {
     checkSameSize(a, b);
     double diff = 0.0, mag = 0.0;

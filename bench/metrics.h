@@ -20,8 +20,12 @@ double ssim(const std::vector<float>& a, const std::vector<float>& b, int w, int
 double ssimDisplay(const FloatImage& a, const FloatImage& ref);
 // a - b per channel (first three channels), as a 3-channel image.
 FloatImage subtract(const FloatImage& a, const FloatImage& b);
-// The first three channels of img.
+// The first three channels of img (missing ones 0).
 FloatImage rgb(const FloatImage& img);
+// Channels first .. first + count - 1 of img as a new image (the parts of a stacked EXR).
+FloatImage channelRange(const FloatImage& img, int first, int count = 3);
+// The RGB of each part side by side in the channels (3 per part): one EXR for final, direct and indirect.
+FloatImage stackRgb(const std::vector<const FloatImage*>& parts);
 // Mean |a - b| over pixels and channels divided by the mean |b| (0 if b is black): frame-to-frame change.
 double relativeChange(const FloatImage& a, const FloatImage& b);
 

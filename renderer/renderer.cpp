@@ -1,5 +1,6 @@
 #include "renderer/renderer.h"
 
+#include "renderer/core/util.h"
 #include "renderer/passes/ambient_occlusion_pass.h"
 #include "renderer/passes/bilateral_blur_pass.h"
 #include "renderer/passes/composite_pass.h"
@@ -39,12 +40,6 @@ struct GpuLight {
     glm::vec4 radiance, position, direction, params;
     glm::mat4 shadowMatrix;
 };
-
-uint64_t hashBytes(uint64_t h, const void* data, size_t n) {
-    const auto* p = static_cast<const unsigned char*>(data);
-    for (size_t i = 0; i < n; ++i) h = (h ^ p[i]) * 1099511628211ull;
-    return h;
-}
 
 float projScale(const Camera& c, int height) {
     return c.perspective ? float(height) / (2.0f * std::tan(0.5f * c.yfov)) : float(height) / (2.0f * c.orthoHalfHeight);
@@ -191,10 +186,10 @@ void Renderer::setupLights(const Settings& s) {
     }
     lightCount_ = int(gpu.size());
     if (gpu.empty()) gpu.emplace_back();
-    uint64_t key = hashBytes(1469598103934665603ull, gpu.data(), gpu.size() * sizeof(GpuLight));
-    key = hashBytes(key, &size, sizeof(size));
+    uint64_t key = fnv1a(kFnvOffset, gpu.data(), gpu.size() * sizeof(GpuLight));
+    key = fnv1a(key, &size, sizeof(size));
     const void* scenePtr = sceneGpu_.get();
-    key = hashBytes(key, &scenePtr, sizeof(scenePtr));
+    key = fnv1a(key, &scenePtr, sizeof(scenePtr));
     if (key == shadowKey_) return;  // lights unchanged: the buffer already holds them (static scenes)
     glNamedBufferData(lightSsbo_.id(), GLsizeiptr(gpu.size() * sizeof(GpuLight)), gpu.data(), GL_DYNAMIC_DRAW);
     shadowKey_ = key;
@@ -342,11 +337,6 @@ void Renderer::render(const Settings& user) {
     const bool gpu = options_.timing == TimingMode::GpuQueries;
     const bool cpu = options_.timing == TimingMode::ThreadCpu;
     const bool finish = options_.timing == TimingMode::WallClock || cpu;
-    auto cpuMs = [] {
-        timespec ts{};
-        clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
-        return double(ts.tv_sec) * 1e3 + double(ts.tv_nsec) * 1e-6;
-    };
     auto& queries = queries_[frameIndex_ % 2];
     auto& queryNames = queryNames_[frameIndex_ % 2];
     if (gpu) {
@@ -363,7 +353,7 @@ void Renderer::render(const Settings& user) {
     for (size_t index : order_) {
         RenderPass* p = passes_[index].get();
         auto t0 = clock::now();
-        const double c0 = cpu ? cpuMs() : 0.0;
+        const double c0 = cpu ? threadCpuMs() : 0.0;
         if (gpu) {
             if (q == queries.size()) {
                 GLuint id = 0;
@@ -379,7 +369,7 @@ void Renderer::render(const Settings& user) {
             ++q;
         } else if (finish) {
             glFinish();
-            timings_.push_back({p->name(), cpu ? cpuMs() - c0 : std::chrono::duration<double, std::milli>(clock::now() - t0).count()});
+            timings_.push_back({p->name(), cpu ? threadCpuMs() - c0 : std::chrono::duration<double, std::milli>(clock::now() - t0).count()});
         }
     }
     glBindFramebuffer(GL_FRAMEBUFFER, 0);

@@ -1,9 +1,10 @@
 // deepgi bench: metric functions on known images, the Pareto front, the reference cache and a tiny bench run.
 #include "bench/bench.h"
-#include "bench/canvas.h"
+#include "bench/draw.h"
 #include "bench/gi_figures.h"
 #include "bench/hard_suite.h"
 #include "bench/metrics.h"
+#include "bench/plot.h"
 #include "renderer/scene/gltf_loader.h"
 
 #include <gtest/gtest.h>
@@ -12,6 +13,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <sstream>
 #include <unistd.h>
 
@@ -188,14 +190,67 @@ TEST(HardSuite, FloorReferenceIsCachedWithItsFloor) {
     fs::remove_all(dir);
 }
 
-TEST(BenchCanvas, TextAndHeat) {
-    Canvas c(40, 10, {255, 255, 255});
-    EXPECT_EQ(c.text(0, 0, "A1", {0, 0, 0}), 12);
-    // 'A' has its top row 01110: column 0 blank, column 1 set.
-    EXPECT_EQ(c.get(0, 0).r, 255);
-    EXPECT_EQ(c.get(1, 0).r, 0);
-    EXPECT_EQ(heat(0.0).r, 0);
-    EXPECT_GT(heat(1.0).g, 200);
+TEST(HardSuite, FurnaceRunWritesItsFiguresAndBadScalesAreErrors) {
+    // The furnace needs no reference (its answer is exact), so the suite's wiring runs in seconds.
+    const fs::path dir = tempDir("hard");
+    const std::string base = std::string(DEEPGI_BINARY) + " bench --suite hard --hard-scenes furnace --size 32x18 --frames 4"
+                             " --timed-frames 2 --one-bounce-frames 2 --quiet --out " + dir.string();
+    const std::string cmd = base + " --scales 1,1000 > " + (dir / "log.txt").string() + " 2>&1";
+    ASSERT_EQ(std::system(cmd.c_str()), 0) << cmd;
+    for (const char* f : {"results_hard.md", "results_hard.csv", "grid_furnace_inside.png", "grid_furnace_inside_s1000.png"})
+        EXPECT_TRUE(fs::exists(dir / f)) << f;
+    std::ifstream csv(dir / "results_hard.csv");
+    std::string header, line;
+    std::getline(csv, header);
+    for (const char* col : {"ind_rel_l1", "ind_ratio", "one_rel_l1", "one_ratio", "leak_mean_rel", "furnace_max_dev", "vs_scale1", "frame_ms"})
+        EXPECT_NE(header.find(col), std::string::npos) << col;
+    std::vector<std::string> rows;
+    while (std::getline(csv, line))
+        if (!line.empty()) rows.push_back(line);
+    ASSERT_EQ(rows.size(), 2u);
+    EXPECT_EQ(rows[0].rfind("furnace,inside,default,1,", 0), 0u) << rows[0];
+    EXPECT_EQ(rows[1].rfind("furnace,inside,default,1000,", 0), 0u) << rows[1];
+    // A scale the generator does not write is refused with a message naming the option.
+    const std::string bad = base + " --scales 2 > " + (dir / "bad.txt").string() + " 2>&1";
+    EXPECT_NE(std::system(bad.c_str()), 0);
+    std::ifstream b(dir / "bad.txt");
+    const std::string msg((std::istreambuf_iterator<char>(b)), std::istreambuf_iterator<char>());
+    EXPECT_NE(msg.find("--scales"), std::string::npos) << msg;
+    fs::remove_all(dir);
+}
+
+TEST(BenchDraw, TextHeatAndAxes) {
+    // Text (DejaVu Sans through OIIO) darkens pixels of a white canvas, and only near where it is drawn.
+    OIIO::ImageBuf c = draw::canvas(60, 20);
+    draw::text(c, 2, 2, "A1", {0, 0, 0}, 12);
+    float minLeft = 1.0f, minRight = 1.0f;
+    for (int y = 0; y < 20; ++y)
+        for (int x = 0; x < 60; ++x) {
+            float px[3];
+            c.getpixel(x, y, px, 3);
+            (x < 25 ? minLeft : minRight) = std::min(x < 25 ? minLeft : minRight, px[0]);
+        }
+    EXPECT_LT(minLeft, 0.5f);
+    EXPECT_EQ(minRight, 1.0f);
+    // The heat map is OIIO's inferno: 0 is near black, 1 a bright yellow, values clamped.
+    const OIIO::ImageBuf h = draw::heat({0.0f, 1.0f, 7.0f}, 3, 1);
+    float lo[3], hi[3], over[3];
+    h.getpixel(0, 0, lo, 3);
+    h.getpixel(1, 0, hi, 3);
+    h.getpixel(2, 0, over, 3);
+    EXPECT_LT(lo[0] + lo[1] + lo[2], 0.1f);
+    EXPECT_GT(hi[0], 0.9f);
+    EXPECT_GT(hi[1], 0.9f);
+    EXPECT_EQ(over[1], hi[1]);
+    // Axis maxima round up to 1, 2, 2.5, 5 x a power of ten, five ticks.
+    double mx, step;
+    niceAxis(0.31, mx, step);
+    EXPECT_DOUBLE_EQ(mx, 0.5);
+    EXPECT_DOUBLE_EQ(step, 0.1);
+    niceAxis(2.1, mx, step);
+    EXPECT_DOUBLE_EQ(mx, 2.5);
+    niceAxis(0.0, mx, step);
+    EXPECT_DOUBLE_EQ(mx, 1.0);
 }
 
 TEST(BenchReference, SecondCallHitsTheCache) {

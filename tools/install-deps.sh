@@ -1,10 +1,12 @@
 #!/usr/bin/env bash
 # Installs the Debian 12 packages deepgi needs; skips the ones already present (idempotent).
 set -euo pipefail
+# fonts-dejavu-core: the font the bench's plots and grids are labelled with (OIIO render_text, bench/draw.cpp);
+# xvfb xauth: the viewer tests; clang libclang-rt-14-dev: tools/fuzz.sh; libegl-dev: `--context egl`.
 PKGS=(build-essential cmake pkg-config
   libglfw3-dev libglm-dev libimgui-dev libstb-dev libtinygltf-dev nlohmann-json3-dev libcli11-dev
-  libopenimageio-dev openimageio-tools libosmesa6-dev libegl-dev python3-glad libembree-dev libgtest-dev
-  glslang-tools xvfb xauth imagemagick clang libclang-rt-14-dev)
+  libopenimageio-dev libosmesa6-dev libegl-dev python3-glad libembree-dev libgtest-dev fonts-dejavu-core
+  xvfb xauth clang libclang-rt-14-dev)
 missing=()
 for p in "${PKGS[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

@@ -612,23 +612,6 @@ ReferenceResult ReferenceTracer::render(const Camera& camera, const Settings& se
     return res;
 }
 
-std::pair<int, int> parseImageSize(const std::string& text) {
-    const auto fail = [&](const std::string& why) {
-        return std::runtime_error("invalid size '" + text + "': " + why + " (expected WxH, e.g. 320x180)");
-    };
-    const size_t x = text.find_first_of("xX");
-    if (x == std::string::npos) throw fail("no 'x' between width and height");
-    const auto parseSide = [&](const std::string& part, const char* what) {
-        if (part.empty()) throw fail(std::string("missing ") + what);
-        if (part.size() > 6 || part.find_first_not_of("0123456789") != std::string::npos)
-            throw fail(std::string(what) + " '" + part + "' is not a positive integer");
-        const int v = std::stoi(part);
-        if (v <= 0 || v > 65536) throw fail(std::string(what) + " must be between 1 and 65536");
-        return v;
-    };
-    return {parseSide(text.substr(0, x), "width"), parseSide(text.substr(x + 1), "height")};
-}
-
 ReferenceResult renderReference(const Scene& scene, const Camera& camera, const Settings& settings,
                                 const ReferenceOptions& options) {
     ReferenceTracer tracer(scene);

@@ -11,6 +11,7 @@
 #include "renderer/core/camera.h"
 #include "renderer/core/image_io.h"
 #include "renderer/core/settings.h"
+#include "renderer/core/util.h"  // parseImageSize (moved there; kept reachable for existing callers)
 #include "renderer/scene/scene.h"
 
 #include <cstdint>
@@ -57,10 +58,6 @@ private:
     struct Impl;
     std::unique_ptr<Impl> impl_;
 };
-
-// "WxH" (e.g. "320x180") -> {W, H}. Strict: positive decimal integers up to 65536, nothing else; throws
-// std::runtime_error quoting the text otherwise.
-std::pair<int, int> parseImageSize(const std::string& text);
 
 // One-shot convenience: build the tracer and render.
 ReferenceResult renderReference(const Scene& scene, const Camera& camera, const Settings& settings,
