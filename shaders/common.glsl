@@ -44,7 +44,10 @@ vec3 sanitizeR11G11B10(vec3 v, vec2 fragCoord) {
     h = (h ^ (h >> 16u)) * 2246822519u;
     h = (h ^ (h >> 13u)) * 3266489917u;
     float u = float(h >> 8u) * (1.0 / 16777216.0);  // [0, 1), the same for the three channels (grey stays grey)
-    return min(floor(v * scale + u) / scale, vec3(MAX_RADIANCE));
+    vec3 r = min(floor(v * scale + u) / scale, vec3(MAX_RADIANCE));
+    // Within B's last step (1024) of the maximum every channel goes to it: R and G, with finer steps, would
+    // otherwise stop short of a B that rounded up, and a saturated grey would turn yellow.
+    return mix(r, vec3(MAX_RADIANCE), step(vec3(MAX_RADIANCE - 1024.0), v));
 }
 
 // Distance along the view axis from a [0,1] depth-buffer value. clip = (near, far), persp = 1 or 0.

@@ -343,12 +343,12 @@ TEST_F(GLTest, GraphListsThePipelineInOrder) {
     const auto g = r->graph();
     std::vector<std::string> order;
     for (const auto& n : g) order.push_back(n.name + (n.enabled ? "" : " (off)"));
-    EXPECT_EQ(order, (std::vector<std::string>{"Shadow maps", "Deep G-buffer", "Reproject radiance", "Input radiance",
+    EXPECT_EQ(order, (std::vector<std::string>{"Shadow maps", "Probe update", "Deep G-buffer", "Reproject radiance", "Input radiance",
                                                "Radiosity gather", "Ambient occlusion (off)", "Bilateral blur",
                                                "Temporal blend", "Composite"}));
-    const auto& gather = g[4];
-    EXPECT_EQ(gather.reads, (std::vector<std::string>{"Depth", "Normal", "Input Radiance"}));
-    EXPECT_EQ(gather.writes, (std::vector<std::string>{"Output Radiance"}));
+    const auto& gather = g[5];
+    EXPECT_EQ(gather.reads, (std::vector<std::string>{"Depth", "Normal", "Input Radiance", "Probe Irradiance", "Probe Depth", "Probe Data"}));
+    EXPECT_EQ(gather.writes, (std::vector<std::string>{"Output Radiance", "Gather Coverage"}));
     // Units are distinct within a pass and never the material textures' 0 and 1.
     for (const auto& n : g) {
         std::vector<int> units;
@@ -360,8 +360,8 @@ TEST_F(GLTest, GraphListsThePipelineInOrder) {
     applyAssignment(s, "temporal.order=temporal_first");
     r->prepare(s);
     const auto g2 = r->graph();
-    EXPECT_EQ(g2[6].name, "Temporal blend");
-    EXPECT_EQ(g2[7].name, "Bilateral blur");
+    EXPECT_EQ(g2[7].name, "Temporal blend");
+    EXPECT_EQ(g2[8].name, "Bilateral blur");
 }
 
 // `deepgi graph`: the default scene's pipeline in order with its textures, temporal_first reorders, --dot writes a
@@ -381,7 +381,7 @@ TEST(GraphCli, PrintsThePipelineAndWritesGraphviz) {
     const std::string dot = ::testing::TempDir() + "deepgi_graph_" + std::to_string(::getpid()) + ".dot";
     std::string out;
     ASSERT_EQ(run("--size 64x48 --dot '" + dot + "'", out), 0) << out;
-    for (const char* part : {" 1. Shadow maps", " 2. Deep G-buffer", " 5. Radiosity gather", " 8. Composite",
+    for (const char* part : {" 1. Shadow maps", " 2. Probe update", " 3. Deep G-buffer", " 6. Radiosity gather", " 9. Composite",
                              "Ambient occlusion (disabled", "Radiosity Scratch", "R11F_G11F_B10F  64x48 (screen)", "uRadiance@"})
         EXPECT_TRUE(contains(out, part)) << part << "\n" << out;
     EXPECT_LT(out.find("Bilateral blur"), out.find("Temporal blend"));

@@ -42,8 +42,9 @@ TEST_F(GLTest, GpuTimerQueriesReportEveryPass) {
     renderer->render(s);
     renderer->render(s);
     const auto& t = renderer->timings();
-    ASSERT_EQ(t.size(), 8u);  // all eight passes are enabled by default
-    EXPECT_EQ(t[1].name, "Deep G-buffer");
+    ASSERT_EQ(t.size(), 9u);  // all nine passes but AO are enabled by default
+    EXPECT_EQ(t[1].name, "Probe update");
+    EXPECT_EQ(t[2].name, "Deep G-buffer");
     for (const auto& p : t) {
         EXPECT_TRUE(std::isfinite(p.ms)) << p.name;
         EXPECT_GE(p.ms, 0.0) << p.name;

@@ -46,6 +46,9 @@ protected:
     }
     std::string path(const std::string& name) const { return (dir_ / name).string(); }
 
+    // These tests check the viewer's mechanics on frames that must stay still: without the probe volume, which keeps
+    // converging for its first few hundred updates (tests/test_probe_volume.cpp covers it).
+    static constexpr const char* kNoProbes = "--set probes.enabled=false ";
     // Runs `deepgi view` on the Cornell box with the script; extra arguments appended.
     ViewerRun view(const std::string& script, const std::string& extra = "", bool fresh = true) {
         std::ofstream(path("script.txt")) << script;
@@ -53,6 +56,7 @@ protected:
         std::ostringstream cmd;
         cmd << "cd '" << dir_.string() << "' && XDG_CONFIG_HOME='" << path("config") << "' xvfb-run -a -s '-screen 0 1280x720x24' '"
             << DEEPGI_BINARY << "' view " << (fresh ? "--fresh " : "") << "--size " << kW << "x" << kH << " --script '" << path("script.txt") << "' "
+            << kNoProbes
             << extra << " '" << DEEPGI_ASSET_DIR << "/cornell_box/cornell_box.gltf' > '" << log << "' 2>&1";
         return runUnderXvfb(cmd.str(), log);
     }
@@ -387,7 +391,7 @@ TEST_F(ViewerRound2, CaptureReRendersHeadlessWithTheSameImage) {
     const nlohmann::json cam = nlohmann::json::parse(readText((cap / "camera.json").string()));
     const int w = cam.at("width"), h = cam.at("height");
     std::string log;
-    const std::string render = std::string("'") + DEEPGI_BINARY + "' render '" + DEEPGI_ASSET_DIR + "/cornell_box/cornell_box.gltf' --camera-file '" +
+    const std::string render = std::string("'") + DEEPGI_BINARY + "' render " + kNoProbes + "'" + DEEPGI_ASSET_DIR + "/cornell_box/cornell_box.gltf' --camera-file '" +
                                (cap / "camera.json").string() + "' --settings '" + (cap / "settings.json").string() + "' --size " +
                                std::to_string(w) + "x" + std::to_string(h) + " --frames 3 --out '" + path("rerender") + "'";
     ASSERT_EQ(runCommand(render, &log), 0) << log;
@@ -523,7 +527,7 @@ TEST_F(ViewerRound2, InspectorReadoutStatsHatchDepthAndErrorViews) {
     auto layout = readDump(path("layout.txt"));
     const fs::path cap = onlyCapture(path("shots"));
     std::string log;
-    ASSERT_EQ(runCommand(std::string("'") + DEEPGI_BINARY + "' render '" + DEEPGI_ASSET_DIR + "/cornell_box/cornell_box.gltf' --camera-file '" +
+    ASSERT_EQ(runCommand(std::string("'") + DEEPGI_BINARY + "' render " + kNoProbes + "'" + DEEPGI_ASSET_DIR + "/cornell_box/cornell_box.gltf' --camera-file '" +
                          (cap / "camera.json").string() + "' --settings '" + (cap / "settings.json").string() + "' --size " +
                          std::to_string(int(nlohmann::json::parse(readText((cap / "camera.json").string())).at("width"))) + "x" +
                          std::to_string(int(nlohmann::json::parse(readText((cap / "camera.json").string())).at("height"))) +
