@@ -1,6 +1,7 @@
 #include "renderer/renderer.h"
 
 #include "renderer/core/util.h"
+#include "renderer/core/gbuffer_codec.h"
 #include "renderer/passes/ambient_occlusion_pass.h"
 #include "renderer/passes/bilateral_blur_pass.h"
 #include "renderer/passes/composite_pass.h"
@@ -432,18 +433,11 @@ FloatImage Renderer::readLayer(const std::string& layerName, int level, bool dec
                 const float* src = &raw[((size_t(face) * h + y) * w + x) * channels];
                 const int ox = face * w + x, oy = h - 1 - y;  // GL rows are bottom-up
                 if (decodeNormal) {
-                    glm::vec3 v(src[0], src[1], 1.0f - std::abs(src[0]) - std::abs(src[1]));
-                    if (v.z < 0.0f) {
-                        float vx = (1.0f - std::abs(v.y)) * (v.x >= 0.0f ? 1.0f : -1.0f);
-                        float vy = (1.0f - std::abs(v.x)) * (v.y >= 0.0f ? 1.0f : -1.0f);
-                        v.x = vx;
-                        v.y = vy;
-                    }
-                    v = glm::normalize(v);
+                    const glm::vec3 v = octDecode(src[0], src[1]);
                     for (int c = 0; c < 3; ++c) img.at(ox, oy, c) = v[c];
                 } else if (decodeDepth) {
                     float dv = src[0];
-                    float z = persp ? 2.0f * n * f / std::max(f + n - (dv * 2.0f - 1.0f) * (f - n), 1e-30f) : n + dv * (f - n);
+                    float z = linearDepth(dv, n, f, persp);
                     img.at(ox, oy, 0) = std::min(z, f);
                 } else {
                     for (int c = 0; c < channels; ++c) img.at(ox, oy, c) = src[c];

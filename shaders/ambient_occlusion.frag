@@ -36,18 +36,17 @@ void main() {
     float z = -X.z;
     float rss = uCameraPos.w > 0.5 ? uClip.z * uRadius / max(z, 1e-6) : uClip.z * uRadius;
     // The gather's per-pixel rotation and jitter, so both passes see the same taps.
-    float phi = float((3 * pix.x) ^ (pix.y + pix.x * pix.y)) * 10.0 + uTime;
-    float jitter = fract(sin(gl_FragCoord.x * 100.0 + gl_FragCoord.y + uTime) * 1e5 + sin(gl_FragCoord.y * 1000.0) * 1000.0) * 0.8 + 0.1;
+    float phi, jitter;
+    spiralPixel(pix, gl_FragCoord.xy, uTime, phi, jitter);
     ivec2 size = ivec2(uViewport.xy);
     float r2 = uRadius * uRadius;
     float eps = 1e-4 * r2;
     float sum = 0.0;
     int layers = uUseLayer2 != 0 ? 2 : 1;
     for (int i = 0; i < uNumSamples; ++i) {
-        float alpha = (float(i) + jitter) / float(uNumSamples);
-        float theta = alpha * uSpiralTurns * 6.28 + phi;
-        float h = alpha * rss;
-        ivec2 Y = pix + ivec2(h * vec2(cos(theta), sin(theta)));
+        float h;
+        vec2 dir = spiralTap(i, uNumSamples, uSpiralTurns, phi, jitter, rss, h);
+        ivec2 Y = pix + ivec2(h * dir);
         if (any(lessThan(Y, ivec2(0))) || any(greaterThanEqual(Y, size))) continue;  // off-screen: unoccluded
         int m = clamp(findMSB(int(h)) - uLogMaxOffset, uMinMip, uMaxMip);
         ivec2 T = Y >> m;

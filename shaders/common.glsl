@@ -86,6 +86,19 @@ vec3 octDecode(vec2 e) {
 
 bool isSky(float d) { return d >= 1.0; }
 
+// The spiral taps of the gather and the AO (technique.md 1.6): G3D's per-pixel rotation phi and radial jitter
+// (optionally varied with time), and tap i of n: its radius h (pixels, uniform in [0, rss]) and unit direction.
+void spiralPixel(ivec2 pix, vec2 fragCoord, float time, out float phi, out float jitter) {
+    phi = float((3 * pix.x) ^ (pix.y + pix.x * pix.y)) * 10.0 + time;
+    jitter = fract(sin(fragCoord.x * 100.0 + fragCoord.y + time) * 1e5 + sin(fragCoord.y * 1000.0) * 1000.0) * 0.8 + 0.1;
+}
+vec2 spiralTap(int i, int n, float turns, float phi, float jitter, float rss, out float h) {
+    float alpha = (float(i) + jitter) / float(n);
+    float theta = alpha * turns * 6.28 + phi;
+    h = alpha * rss;
+    return vec2(cos(theta), sin(theta));
+}
+
 // The full-resolution pixel whose sample mip texel T of level m holds: gather_mips.frag's rotated-grid choice,
 // q = clamp(2p + (p.y & 1, p.x & 1)), followed back to level 0. size = level-0 size.
 ivec2 sourcePixel(ivec2 T, int m, ivec2 size) {

@@ -122,8 +122,8 @@ void main() {
     float rss = uCameraPos.w > 0.5 ? uClip.z * uRadius / max(z, 1e-30) : uClip.z * uRadius;
     rss = min(rss, 4.0 * max(uViewport.x, uViewport.y));  // beyond the screen no tap finds data
     // Per-pixel rotation and radial jitter (G3D's hash), optionally varied per frame.
-    float phi = float((3 * pix.x) ^ (pix.y + pix.x * pix.y)) * 10.0 + uTime;
-    float jitter = fract(sin(gl_FragCoord.x * 100.0 + gl_FragCoord.y + uTime) * 1e5 + sin(gl_FragCoord.y * 1000.0) * 1000.0) * 0.8 + 0.1;
+    float phi, jitter;
+    spiralPixel(pix, gl_FragCoord.xy, uTime, phi, jitter);
     float marchJitter = fract(jitter * 7.31 + 0.5) * 0.8 + 0.1;
     ivec2 size = ivec2(uViewport.xy);
     float r2 = uRadius * uRadius;
@@ -136,10 +136,9 @@ void main() {
     // Tap radii are uniform in [0, rss]: a tap at h stands for 2*pi*h*rss/N pixels^2 of the disk.
     float areaPerH = 2.0 * PI * rss / float(uNumSamples);
     for (int i = 0; i < uNumSamples; ++i) {
-        float alpha = (float(i) + jitter) / float(uNumSamples);
-        float theta = alpha * uSpiralTurns * 6.28 + phi;
-        float h = alpha * rss;
-        ivec2 Yp = pix + ivec2(h * vec2(cos(theta), sin(theta)));
+        float h;
+        vec2 dir = spiralTap(i, uNumSamples, uSpiralTurns, phi, jitter, rss, h);
+        ivec2 Yp = pix + ivec2(h * dir);
         if (any(lessThan(Yp, ivec2(0))) || any(greaterThanEqual(Yp, size))) continue;  // off-screen: no data
         if (Yp == pix) continue;
         int m = mipFor(h);

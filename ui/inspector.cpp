@@ -2,6 +2,7 @@
 // raw value under the cursor (a 3x3 readback around it), statistics on demand (empty texels left out, normals as
 // vectors), NaN/Inf/negative highlights, empty texels hatched, and error views of A against B: A, B, wipe,
 // |A - B|, relative error in false colour with its legend, and the error figures in a line under the image.
+#include "renderer/core/gbuffer_codec.h"
 #include "ui/viewer_ui.h"
 
 #include "renderer/core/image_compare.h"
@@ -312,22 +313,14 @@ void drawInspector(InspectorState& s, ViewerServices& services, double now, ImVe
                 std::string readout = line;
                 if (src.vis == Visualize::Depth) {
                     const float d = blk.at(tx, ty, 0), n = cam.znear, f = cam.zfar;
-                    const float z = cam.perspective ? 2.0f * n * f / std::max(f + n - (d * 2.0f - 1.0f) * (f - n), 1e-30f)
-                                                    : n + d * (f - n);
+                    const float z = linearDepth(d, n, f, cam.perspective);
                     std::snprintf(line, sizeof(line), "\nlinear depth: %.5g%s", double(z), d >= 1.0f ? " (empty: far plane)" : "");
                     readout += line;
                 } else if (depthLike(src)) {
                     std::snprintf(line, sizeof(line), "\nlight-space depth: %.6g (0 near .. 1 far)", double(blk.at(tx, ty, 0)));
                     readout += line;
                 } else if (src.vis == Visualize::Normal && blk.channels >= 2) {
-                    glm::vec3 v(blk.at(tx, ty, 0), blk.at(tx, ty, 1), 0.0f);
-                    v.z = 1.0f - std::abs(v.x) - std::abs(v.y);
-                    if (v.z < 0.0f) {
-                        const float vx = (1.0f - std::abs(v.y)) * (v.x >= 0.0f ? 1.0f : -1.0f);
-                        v.y = (1.0f - std::abs(v.x)) * (v.y >= 0.0f ? 1.0f : -1.0f);
-                        v.x = vx;
-                    }
-                    v = glm::normalize(v);
+                    const glm::vec3 v = octDecode(blk.at(tx, ty, 0), blk.at(tx, ty, 1));
                     std::snprintf(line, sizeof(line), "\nnormal: (%.4f, %.4f, %.4f)", double(v.x), double(v.y), double(v.z));
                     readout += line;
                 }
