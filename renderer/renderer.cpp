@@ -411,8 +411,10 @@ FloatImage Renderer::readLayer(const std::string& layerName, int level, bool dec
     const bool depth = gl::isDepthFormat(d.format);
     const bool cube = d.target == GL_TEXTURE_CUBE_MAP_ARRAY;
     const int faces = cube ? 6 : 1;
-    int channels = depth ? 1 : (d.format == GL_RG8_SNORM ? 2 : (d.format == GL_RGBA8 || d.format == GL_RGBA16F ? 4 : 3));
-    const GLenum fmt = depth ? GL_DEPTH_COMPONENT : channels == 2 ? GL_RG : channels == 3 ? GL_RGB : GL_RGBA;
+    const bool two = d.format == GL_RG8_SNORM || d.format == GL_RG32F || d.format == GL_RG16F;
+    const bool four = d.format == GL_RGBA8 || d.format == GL_RGBA16F || d.format == GL_RGBA32F;
+    int channels = depth || d.format == GL_R8 ? 1 : two ? 2 : four ? 4 : 3;
+    const GLenum fmt = depth ? GL_DEPTH_COMPONENT : channels == 1 ? GL_RED : channels == 2 ? GL_RG : channels == 3 ? GL_RGB : GL_RGBA;
     std::vector<float> raw(size_t(w) * h * channels * faces);
     glPixelStorei(GL_PACK_ALIGNMENT, 1);
     const int zoff = d.target == GL_TEXTURE_2D ? 0 : (cube ? layer * 6 : layer);

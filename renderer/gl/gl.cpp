@@ -98,6 +98,7 @@ const char* formatName(GLenum f) {
     case GL_RG8_SNORM: return "RG8_SNORM";
     case GL_RGBA16F: return "RGBA16F";
     case GL_RGBA32F: return "RGBA32F";
+    case GL_RG32F: return "RG32F";
     case GL_R32F: return "R32F";
     case GL_R8: return "R8";
     case GL_RG16F: return "RG16F";
