@@ -202,9 +202,14 @@ void Viewer::afterRender() {
             const FloatImage alb = renderer_->readLayer("Albedo 1", 0, false), e = renderer_->readLayer("Output Radiance", 0, false);
             const FloatImage depth = renderer_->readLayer("Depth 1", 0, false);
             const float k = renderer_->config().seedComposite ? 1.0f : 1.0f / 3.14159265f;
-            for (size_t i = 0; i < size_t(fin.width) * fin.height; ++i)
-                if (depth.pixels[i * depth.channels] < 1.0f)
-                    for (int c = 0; c < 3; ++c) ind.pixels[i * 3 + c] = alb.pixels[i * alb.channels + c] * e.pixels[i * e.channels + c] * k;
+            const int d = renderer_->config().radiosityDownsample;  // E on the radiosity grid (nearest texel)
+            for (int y = 0; y < fin.height; ++y)
+                for (int x = 0; x < fin.width; ++x) {
+                    const size_t i = size_t(y) * fin.width + x;
+                    const size_t j = size_t(std::min(y / d, e.height - 1)) * e.width + size_t(std::min(x / d, e.width - 1));
+                    if (depth.pixels[i * depth.channels] < 1.0f)
+                        for (int c = 0; c < 3; ++c) ind.pixels[i * 3 + c] = alb.pixels[i * alb.channels + c] * e.pixels[j * e.channels + c] * k;
+                }
         }
         const int pw = ptSnap_.final.width, ph = ptSnap_.final.height;
         const FloatImage finS = downsampleBox(fin, pw, ph), indS = downsampleBox(ind, pw, ph);

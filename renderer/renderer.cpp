@@ -34,6 +34,7 @@ namespace {
 struct FrameUniformsStd140 {
     glm::mat4 view, proj, viewProj, invViewProj, prevViewProj, prevInvViewProj;
     glm::vec4 cameraPos, cameraForward, prevCameraPos, prevCameraForward, viewport, clip, prevClip, background;
+    glm::vec4 radiosityGrid;
 };
 
 // std430 mirror of GpuLight in shaders/lighting.glsl.
@@ -117,6 +118,13 @@ PipelineConfig Renderer::makeConfig(const Settings& s) const {
     c.temporalFirst = s.filterOrder == FilterOrder::TemporalFirst && s.temporal;
     c.depthPeel = s.generation == GBufferGeneration::DepthPeel && s.layer2;
     c.ao = s.aoEnabled;
+    if (c.indirect) {
+        const char* glRenderer = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
+        const bool software = glRenderer && (std::strstr(glRenderer, "llvmpipe") || std::strstr(glRenderer, "softpipe"));
+        const bool half = s.radiosityResolution == RadiosityResolution::Half ||
+                          (s.radiosityResolution == RadiosityResolution::Auto && software);
+        c.radiosityDownsample = half ? 2 : 1;
+    }
     if (probes_) {
         c.probes = true;
         for (const auto& t : probes_->textures()) {
@@ -214,6 +222,11 @@ void Renderer::uploadFrameUniforms(const Settings& s) {
     u.clip = glm::vec4(camera_.znear, camera_.zfar, projScale(camera_, height_), float(frameIndex_));
     u.prevClip = glm::vec4(prev.znear, prev.zfar, projScale(prev, height_), 0.0f);
     u.background = glm::vec4(glm::vec3(s.background), 1.0f);
+    {
+        int rw = 0, rh = 0;
+        config_.radiositySize().resolve(width_, height_, 0, rw, rh);
+        u.radiosityGrid = glm::vec4(float(config_.radiosityDownsample), float(rw), float(rh), 0.0f);
+    }
     glNamedBufferSubData(frameUbo_.id(), 0, sizeof(u), &u);
     glBindBufferBase(GL_UNIFORM_BUFFER, 0, frameUbo_.id());
 }

@@ -14,17 +14,20 @@ uniform float uKernel[7];
 uniform float uPlaneEpsilon2;  // squared distance under which a tap is trusted without the plane test
 layout(location = 0) out vec3 oValue;
 
+// World position of the surface a radiosity-grid pixel stands for.
 vec3 position(ivec2 p, out bool sky) {
-    float d = texelFetch(uDepth, ivec3(p, 0), 0).r;
+    ivec2 s = screenPixelOfRadiosity(p);
+    float d = texelFetch(uDepth, ivec3(s, 0), 0).r;
     sky = isSky(d);
-    return worldFromDepth(vec2(p) + 0.5, d, uInvViewProj);
+    return worldFromDepth(vec2(s) + 0.5, d, uInvViewProj);
 }
+vec3 normalAt(ivec2 p) { return octDecode(texelFetch(uNormal, ivec3(screenPixelOfRadiosity(p), 0), 0).rg); }
 
 float bilateral(vec3 C, vec3 nC, ivec2 tp) {
     bool sky;
     vec3 T = position(tp, sky);
     if (sky) return 0.0;
-    vec3 nT = octDecode(texelFetch(uNormal, ivec3(tp, 0), 0).rg);
+    vec3 nT = normalAt(tp);
     float normalW = max(0.0, 1.0 - uEdgeSharpness * 40.0 * (1.0 - dot(nC, nT)));
     vec3 dq = C - T;
     float dd = dot(dq, dq);
@@ -43,8 +46,8 @@ void main() {
     vec3 C = position(pix, sky);
     vec3 centre = texelFetch(uSource, pix, 0).rgb;
     if (sky) { oValue = centre; return; }
-    vec3 nC = octDecode(texelFetch(uNormal, ivec3(pix, 0), 0).rg);
-    ivec2 size = ivec2(uViewport.xy);
+    vec3 nC = normalAt(pix);
+    ivec2 size = ivec2(uRadiosityGrid.yz);
     vec3 sum = centre * uKernel[0];
     float total = uKernel[0];
     for (int side = -1; side <= 1; side += 2) {

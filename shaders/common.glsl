@@ -14,7 +14,16 @@ layout(std140, binding = 0) uniform FrameUniforms {
     vec4 uClip;           // near, far, projScale (pixels per scene unit at distance 1; ortho: per unit), frame index
     vec4 uPrevClip;       // near, far of last frame
     vec4 uBackground;     // rgb backdrop radiance
+    vec4 uRadiosityGrid;  // x = d: radiosity pixel p stands for screen pixel p * d + d / 2; yz = the grid's size
 };
+
+// The screen pixel a radiosity-grid pixel stands for (itself at full resolution).
+ivec2 screenPixelOfRadiosity(ivec2 p) {
+    int d = int(uRadiosityGrid.x);
+    return min(p * d + d / 2, ivec2(uViewport.xy) - 1);
+}
+// The radiosity-grid pixel covering a screen pixel.
+ivec2 radiosityPixelOfScreen(ivec2 pix) { return min(pix / int(uRadiosityGrid.x), ivec2(uRadiosityGrid.yz) - 1); }
 
 const float PI = 3.14159265358979;
 // The R11F_G11F_B10F maximum of the B channel (R and G reach 65024): one limit for all three channels, so a clamped

@@ -23,6 +23,42 @@ vec3 toSrgb(vec3 c) {
     return mix(c * 12.92, 1.055 * pow(c, vec3(1.0 / 2.4)) - 0.055, step(vec3(0.0031308), c));
 }
 
+// Indirect irradiance at screen pixel pix (surface P, normal n) from the radiosity grid: its own texel at full
+// resolution; on a coarser grid the bilinear neighbours, each weighted by how well its surface matches this one
+// (distance from this pixel's tangent plane, normal agreement: a joint bilateral upsample), or the best-matching
+// neighbour alone where none matches (a silhouette against a different surface).
+vec3 indirectAt(ivec2 pix, vec3 P, vec3 n) {
+    int d = int(uRadiosityGrid.x);
+    if (d == 1) return texelFetch(uIndirect, pix, 0).rgb;
+    ivec2 grid = ivec2(uRadiosityGrid.yz);
+    vec2 f = (vec2(pix) + 0.5) / float(d) - 0.5;
+    ivec2 b = ivec2(floor(f));
+    vec2 t = f - vec2(b);
+    float z = max(dot(P - uCameraPos.xyz, uCameraForward.xyz), 1e-30);
+    vec3 sum = vec3(0.0), best = vec3(0.0);
+    float total = 0.0, bestErr = 1e30;
+    for (int k = 0; k < 4; ++k) {
+        ivec2 o = ivec2(k & 1, k >> 1);
+        ivec2 q = clamp(b + o, ivec2(0), grid - 1);
+        ivec2 s = screenPixelOfRadiosity(q);
+        float ds = texelFetch(uDepth, ivec3(s, 0), 0).r;
+        if (isSky(ds)) continue;
+        vec3 Ps = worldFromDepth(vec2(s) + 0.5, ds, uInvViewProj);
+        vec3 ns = octDecode(texelFetch(uNormal, ivec3(s, 0), 0).rg);
+        float plane = abs(dot(Ps - P, n)) / (0.005 * z);  // off this pixel's plane, in units of 0.5 % of its depth
+        float facing = max(dot(n, ns), 0.0);
+        float err = plane + (1.0 - facing) * 20.0;
+        float wb = (o.x == 1 ? t.x : 1.0 - t.x) * (o.y == 1 ? t.y : 1.0 - t.y);
+        float facing4 = facing * facing;
+        float w = wb * facing4 * facing4 / (1.0 + plane * plane);
+        vec3 E = texelFetch(uIndirect, q, 0).rgb;
+        sum += w * E;
+        total += w;
+        if (err < bestErr) { bestErr = err; best = E; }
+    }
+    return total > 1e-3 ? sum / total : best;
+}
+
 void main() {
     ivec2 pix = ivec2(gl_FragCoord.xy);
     float d = texelFetch(uDepth, ivec3(pix, 0), 0).r;
@@ -31,12 +67,12 @@ void main() {
         L = uBackground.rgb;
     } else {
         vec3 albedo = texelFetch(uAlbedo, ivec3(pix, 0), 0).rgb;
-        vec3 E = uIndirectOn != 0 ? texelFetch(uIndirect, pix, 0).rgb : vec3(0.0);
+        vec3 P = worldFromDepth(vec2(pix) + 0.5, d, uInvViewProj);
+        vec3 n = octDecode(texelFetch(uNormal, ivec3(pix, 0), 0).rg);
+        vec3 E = uIndirectOn != 0 ? indirectAt(pix, P, n) : vec3(0.0);
         if (uSeedMode != 0) {
             L = texelFetch(uRadiance, ivec3(pix, 0), 0).rgb + E * albedo;
         } else {
-            vec3 P = worldFromDepth(vec2(pix) + 0.5, d, uInvViewProj);
-            vec3 n = octDecode(texelFetch(uNormal, ivec3(pix, 0), 0).rg);
             L = albedo / PI * (directIrradiance(P, n) + E);
             if (uHasEmission != 0) L += texelFetch(uEmission, ivec3(pix, 0), 0).rgb;
         }

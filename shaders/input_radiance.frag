@@ -24,7 +24,7 @@ void main() {
     vec3 n = octDecode(texelFetch(uNormal, ivec3(pix, uLayer), 0).rg);
     vec3 albedo = texelFetch(uAlbedo, ivec3(pix, uLayer), 0).rgb;
     vec3 E = directIrradiance(P, n);
-    if (uFeedback != 0 && uLayer == 0) E += (1.0 - uDamping) * texelFetch(uReprojected, pix, 0).rgb;
+    if (uFeedback != 0 && uLayer == 0) E += (1.0 - uDamping) * texelFetch(uReprojected, radiosityPixelOfScreen(pix), 0).rgb;
 #ifdef DEEPGI_PROBES
     // Layer 2 has no gathered light of its own, nor layer 1 before there is a history: the probes give theirs.
     else E += (1.0 - uDamping) * probeIrradiance(P, n);

@@ -113,7 +113,7 @@ void tapLayer(int j, ivec2 T, int m, vec4 h0, vec4 hz, vec3 X, vec3 nX, float r2
 }
 
 void main() {
-    ivec2 pix = ivec2(gl_FragCoord.xy);
+    ivec2 pix = screenPixelOfRadiosity(ivec2(gl_FragCoord.xy));  // taps and patches in screen pixels at any grid
     float d = texelFetch(uDepth, ivec3(pix, 0), 0).r;
     if (isSky(d)) { oIrradiance = vec3(0.0); oCoverage = 0.0; return; }
     vec3 X = worldFromDepth(vec2(pix) + 0.5, d, uInvViewProj);

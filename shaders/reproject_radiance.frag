@@ -6,8 +6,14 @@
 uniform sampler2D uHistory;
 layout(location = 0) out vec3 oReprojected;
 void main() {
-    ivec2 pix = ivec2(gl_FragCoord.xy);
+    ivec2 pix = ivec2(gl_FragCoord.xy);  // radiosity grid
     vec2 prevUV;
-    float w = reprojectionWeight(pix, prevUV);
-    oReprojected = w > 0.0 ? sanitizeR11G11B10(texture(uHistory, prevUV).rgb, gl_FragCoord.xy) : vec3(0.0);
+    float w = reprojectionWeight(screenPixelOfRadiosity(pix), prevUV);
+    // Bilinear between the history texels around the point, each texel at the screen pixel it stands for (a grid
+    // texel's centre is not its screen pixel's centre at half resolution: sampling prevUV directly would shift
+    // and blur the history by a quarter texel every frame).
+    float d = uRadiosityGrid.x;
+    vec2 g = (prevUV * uViewport.xy - 0.5 - floor(d * 0.5)) / d + 0.5;
+    vec2 uv = g / uRadiosityGrid.yz;
+    oReprojected = w > 0.0 ? sanitizeR11G11B10(texture(uHistory, uv).rgb, gl_FragCoord.xy) : vec3(0.0);
 }

@@ -5,7 +5,7 @@ uniform float uFalloffStart;
 uniform float uFalloffEnd;
 uniform int uHistoryValid;  // 0 on the first frame and after a camera cut
 
-// Returns the history weight in [0,1] and the previous-frame uv of this pixel's surface.
+// Returns the history weight in [0,1] and the previous-frame uv of the surface at screen pixel pix.
 float reprojectionWeight(ivec2 pix, out vec2 prevUV) {
     prevUV = vec2(-1.0);
     if (uHistoryValid == 0) return 0.0;

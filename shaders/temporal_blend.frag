@@ -7,9 +7,9 @@ uniform sampler2D uReprojected;
 uniform float uAlpha;
 layout(location = 0) out vec3 oValue;
 void main() {
-    ivec2 pix = ivec2(gl_FragCoord.xy);
+    ivec2 pix = ivec2(gl_FragCoord.xy);  // radiosity grid
     vec2 prevUV;
-    float w = uAlpha * reprojectionWeight(pix, prevUV);
+    float w = uAlpha * reprojectionWeight(screenPixelOfRadiosity(pix), prevUV);
     vec3 cur = texelFetch(uCurrent, pix, 0).rgb;
     vec3 prev = texelFetch(uReprojected, pix, 0).rgb;
     oValue = sanitizeR11G11B10(mix(cur, prev, w), gl_FragCoord.xy);

@@ -58,7 +58,7 @@ TEST(Cli, RenderWritesImagesBuffersTimingsAndSettings) {
 }
 
 TEST(Cli, BuffersReportsSeedLayoutTotals) {
-    RunResult r = run("buffers " + std::string(DEEPGI_ASSET_DIR) + "/cornell_box/cornell_box.gltf --size 320x180");
+    RunResult r = run("buffers " + std::string(DEEPGI_ASSET_DIR) + "/cornell_box/cornell_box.gltf --size 320x180 --set radiosity.resolution=full");
     ASSERT_EQ(r.status, 0) << r.output;
     EXPECT_NE(r.output.find("G-buffer:  176 bits per pixel"), std::string::npos) << r.output;
     EXPECT_NE(r.output.find("radiosity: 128 bits per pixel"), std::string::npos) << r.output;

@@ -426,10 +426,10 @@ TEST_F(GLTest, EmptySceneAndSkyOnlyShowTheBackground) {
         const FloatImage fin = r.readFinalRadiance(), out = r.readLayer("Output Radiance");
         for (int y = 0; y < fin.height; ++y)
             for (int x = 0; x < fin.width; ++x)
-                for (int ch = 0; ch < 3; ++ch) {
-                    ASSERT_EQ(fin.at(x, y, ch), 0.375f) << c.name << " " << x << "," << y;
-                    ASSERT_EQ(out.at(x, y, ch), 0.0f) << c.name;
-                }
+                for (int ch = 0; ch < 3; ++ch) ASSERT_EQ(fin.at(x, y, ch), 0.375f) << c.name << " " << x << "," << y;
+        for (int y = 0; y < out.height; ++y)  // the radiosity grid (half the screen on llvmpipe)
+            for (int x = 0; x < out.width; ++x)
+                for (int ch = 0; ch < 3; ++ch) ASSERT_EQ(out.at(x, y, ch), 0.0f) << c.name;
     }
 }
 

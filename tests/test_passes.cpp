@@ -126,6 +126,7 @@ TEST_F(GLTest, ReprojectionWithStillCameraReturnsLastOutput) {
     Settings s;
     s.lengthUnit = 1.0f;  // the lengths below are in scene units
     s.radius = 1.5f;
+    s.radiosityResolution = RadiosityResolution::Full;  // compared with Depth 1 pixel by pixel
     for (int i = 0; i < 4; ++i) r.render(s);
     FloatImage last = r.readLayer("Output Radiance");
     r.render(s);
@@ -178,6 +179,7 @@ TEST_F(GLTest, GatherUnderUniformlyLitCeilingMatchesAnalyticIrradiance) {
     double previousError = 1e9;
     for (int taps : {8, 30, 99}) {
         Settings st;
+        st.radiosityResolution = RadiosityResolution::Full;  // pixel-exact analytic comparison
         st.numSamples = taps;
         st.sunIntensity = 0.0f;
         st.lengthUnit = 1.0f;  // the lengths below are in scene units
@@ -293,13 +295,20 @@ TEST_F(GLTest, TemporalBlendFollowsFormula) {
     EXPECT_NEAR(fresh.at(48, 36, 1), cur[1], 0.02f);
 }
 
-// The memory report of the seed layout: 176 bits per pixel of G-buffer, 128 of radiosity.
+// The memory report of the seed layout: 176 bits per pixel of G-buffer, 128 of radiosity (at full resolution; a
+// half-resolution grid holds a quarter of them per screen pixel).
 TEST_F(GLTest, BufferReportGivesSeedLayout) {
     auto scene = cornellScene();
     Renderer r;
     r.setScene(scene);
     r.resize(320, 180);
-    r.prepare(Settings{});
+    Settings half;
+    half.radiosityResolution = RadiosityResolution::Half;
+    r.prepare(half);
+    EXPECT_EQ(r.textures().memoryReport().radiosityBitsPerPixel, 2 * 32 + 2 * 8);  // input radiance stays full
+    Settings seed;
+    seed.radiosityResolution = RadiosityResolution::Full;
+    r.prepare(seed);
     MemoryReport m = r.textures().memoryReport();
     EXPECT_EQ(m.gbufferBitsPerPixel, 176);
     EXPECT_EQ(m.radiosityBitsPerPixel, 128);
@@ -316,6 +325,7 @@ TEST_F(GLTest, BufferReportGivesSeedLayout) {
     // temporal_first adds exactly one 32-bit history buffer, counted as extra.
     Settings tf;
     tf.filterOrder = FilterOrder::TemporalFirst;
+    tf.radiosityResolution = RadiosityResolution::Full;
     r.prepare(tf);
     MemoryReport m2 = r.textures().memoryReport();
     EXPECT_EQ(m2.radiosityBitsPerPixel, 128);

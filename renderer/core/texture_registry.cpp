@@ -155,12 +155,14 @@ MemoryReport TextureRegistry::memoryReport() const {
     for (const auto& e : entries_) {
         const TextureDecl& d = e.decl;
         const int bits = gl::formatBits(d.format);
-        const bool screen = d.size.screenSized();
+        // Per screen pixel: a grid scaled by s holds s^2 texels per pixel (half resolution: a quarter of the bits).
+        const bool screenGrid = d.size.base == SizeRule::Base::Screen && d.size.margin == 0;
+        const int pixelBits = screenGrid ? int(std::lround(double(bits) * d.size.scale * d.size.scale)) : 0;
         const char* groupName = d.group == MemoryGroup::GBuffer ? "G-buffer" : d.group == MemoryGroup::Radiosity ? "radiosity"
                                 : d.group == MemoryGroup::Scratch ? "scratch" : "extra";
         const int faces = d.target == GL_TEXTURE_CUBE_MAP_ARRAY ? 6 : 1;
         for (int l = 0; l < d.layers(); ++l) {
-            MemoryLine line{d.layerNames[l], gl::formatName(d.format), groupName, screen ? bits : 0,
+            MemoryLine line{d.layerNames[l], gl::formatName(d.format), groupName, pixelBits,
                             uint64_t(e.width) * e.height * bits / 8 * faces};
             r.lines.push_back(line);
         }

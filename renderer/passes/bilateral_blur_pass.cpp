@@ -21,7 +21,7 @@ void BilateralBlurPass::table(const PipelineConfig& c, PassTable& t) const {
     t.read("Depth", "uDepth").level(Levels::Base);
     t.read("Normal", "uNormal").level(Levels::Base);
     t.update("Output Radiance", "uSource").after(c.temporalFirst ? "Temporal blend" : "");
-    t.scratch(radiosityScratch(), "uSource");  // the vertical step reads the horizontal result
+    t.scratch(radiosityScratch(c), "uSource");  // the vertical step reads the horizontal result
 }
 
 void BilateralBlurPass::execute(FrameContext& ctx) {
@@ -41,10 +41,10 @@ void BilateralBlurPass::execute(FrameContext& ctx) {
     // Horizontal: Output -> scratch; vertical: scratch -> Output.
     prog.axis.set(glm::ivec2(1, 0));
     ctx.bindSamplers(prog, {{"uSource", "Output Radiance"}});
-    ctx.drawFullscreen(prog.id(), ctx.fbos.get({{GL_COLOR_ATTACHMENT0, scratch}}, "radiosity scratch"), ctx.width, ctx.height);
+    ctx.drawFullscreen(prog.id(), ctx.fbos.get({{GL_COLOR_ATTACHMENT0, scratch}}, "radiosity scratch"), ctx.radiosityWidth(), ctx.radiosityHeight());
     prog.axis.set(glm::ivec2(0, 1));
     ctx.bindSamplers(prog, {{"uSource", "Radiosity Scratch"}});
-    ctx.drawFullscreen(prog.id(), ctx.fbos.get({{GL_COLOR_ATTACHMENT0, output}}, "output radiance"), ctx.width, ctx.height);
+    ctx.drawFullscreen(prog.id(), ctx.fbos.get({{GL_COLOR_ATTACHMENT0, output}}, "output radiance"), ctx.radiosityWidth(), ctx.radiosityHeight());
 }
 
 }  // namespace deepgi

@@ -12,7 +12,8 @@ bool PipelineConfig::operator==(const PipelineConfig& o) const {
            blur == o.blur && temporal == o.temporal && temporalFirst == o.temporalFirst && depthPeel == o.depthPeel && ao == o.ao &&
            probes == o.probes && std::equal(probeIrradianceSize, probeIrradianceSize + 2, o.probeIrradianceSize) &&
            std::equal(probeDepthSize, probeDepthSize + 2, o.probeDepthSize) && std::equal(probeDataSize, probeDataSize + 2, o.probeDataSize) &&
-           shadowMapLayers == o.shadowMapLayers && shadowCubeLayers == o.shadowCubeLayers;
+           shadowMapLayers == o.shadowMapLayers && shadowCubeLayers == o.shadowCubeLayers &&
+           radiosityDownsample == o.radiosityDownsample;
 }
 
 const char* accessName(Access a) {
@@ -121,6 +122,18 @@ void FrameContext::drawFullscreen(GLuint program, GLuint fbo, int w, int h) cons
     glUseProgram(program);
     glBindVertexArray(fullscreenVao);
     glDrawArrays(GL_TRIANGLES, 0, 3);
+}
+
+int FrameContext::radiosityWidth() const {
+    int w = 0, h = 0;
+    config.radiositySize().resolve(width, height, 0, w, h);
+    return w;
+}
+
+int FrameContext::radiosityHeight() const {
+    int w = 0, h = 0;
+    config.radiositySize().resolve(width, height, 0, w, h);
+    return h;
 }
 
 void LightingUniforms::set(const FrameContext& ctx) const {

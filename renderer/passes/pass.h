@@ -36,6 +36,10 @@ struct PipelineConfig {
     int probeIrradianceSize[2] = {0, 0}, probeDepthSize[2] = {0, 0}, probeDataSize[2] = {0, 0};
     int shadowMapLayers = 0;   // directional + spot lights
     int shadowCubeLayers = 0;  // point lights
+    // The gather, blur and temporal filter run on a grid d times coarser (radiosity pixel p stands for the screen
+    // pixel p * d + d / 2); the composite upsamples by depth and normal.
+    int radiosityDownsample = 1;
+    SizeRule radiositySize() const { return SizeRule::screen(1.0f / float(radiosityDownsample)); }
     bool operator==(const PipelineConfig& o) const;
 };
 
@@ -151,6 +155,9 @@ struct FrameContext {
                       std::initializer_list<std::pair<const char*, const char*>> overrides = {}) const;
     // Draws a full-screen triangle into fbo with a viewport of w x h.
     void drawFullscreen(GLuint program, GLuint fbo, int w, int h) const;
+    // Size of the radiosity grid (config.radiositySize() of this screen).
+    int radiosityWidth() const;
+    int radiosityHeight() const;
 };
 
 // Uniforms of lighting.glsl (its shadow samplers come from the table: "Shadow Maps", "Shadow Cubes").

@@ -28,11 +28,11 @@ void RadiosityGatherPass::table(const PipelineConfig& c, PassTable& t) const {
     t.read("Normal", "uNormal");
     t.read("Input Radiance", "uRadiance");
     if (c.probes) readProbeVolume(t);  // the part of the hemisphere the screen does not cover
-    t.write({"Output Radiance", {"Output Radiance"}, GL_R11F_G11F_B10F, GL_TEXTURE_2D, SizeRule::screen(), 1,
+    t.write({"Output Radiance", {"Output Radiance"}, GL_R11F_G11F_B10F, GL_TEXTURE_2D, c.radiositySize(), 1,
              MemoryGroup::Radiosity, Visualize::Radiance,
              "Indirect irradiance at layer 1: raw gather (the probes fill what the screen did not cover), then blurred "
              "and temporally blended in place"});
-    t.write({"Gather Coverage", {"Gather Coverage"}, GL_R8, GL_TEXTURE_2D, SizeRule::screen(), 1, MemoryGroup::Extra,
+    t.write({"Gather Coverage", {"Gather Coverage"}, GL_R8, GL_TEXTURE_2D, c.radiositySize(), 1, MemoryGroup::Extra,
              Visualize::Color,
              "Share of the cosine-weighted hemisphere that the screen's visible surfaces covered in the gather (1 = all "
              "light came from the screen; the probes give the rest)"});
@@ -62,7 +62,7 @@ void RadiosityGatherPass::execute(FrameContext& ctx) {
     ctx.bindSamplers(prog);
     GLuint fbo = ctx.fbos.get({{GL_COLOR_ATTACHMENT0, ctx.texture("Output Radiance")},
                                {GL_COLOR_ATTACHMENT1, ctx.texture("Gather Coverage")}}, "output radiance");
-    ctx.drawFullscreen(prog.id(), fbo, ctx.width, ctx.height);
+    ctx.drawFullscreen(prog.id(), fbo, ctx.radiosityWidth(), ctx.radiosityHeight());
 }
 
 }  // namespace deepgi

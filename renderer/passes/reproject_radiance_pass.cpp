@@ -18,7 +18,7 @@ void ReprojectRadiancePass::table(const PipelineConfig& c, PassTable& t) const {
     readReprojectionInputs(t);
     // Last frame's filtered irradiance: unblurred (temporal_first) or the final Output Radiance.
     t.history(c.temporalFirst ? "Temporal History" : "Output Radiance", "uHistory");
-    t.write({"Reprojected Radiance", {"Reprojected Radiance"}, GL_R11F_G11F_B10F, GL_TEXTURE_2D, SizeRule::screen(), 1,
+    t.write({"Reprojected Radiance", {"Reprojected Radiance"}, GL_R11F_G11F_B10F, GL_TEXTURE_2D, c.radiositySize(), 1,
              MemoryGroup::Radiosity, Visualize::Radiance, "Last frame's indirect irradiance seen from this frame's camera (0 where rejected)"});
 }
 
@@ -27,7 +27,7 @@ void ReprojectRadiancePass::execute(FrameContext& ctx) {
     prog.reprojection.set(ctx);
     ctx.bindSamplers(prog);
     GLuint fbo = ctx.fbos.get({{GL_COLOR_ATTACHMENT0, ctx.texture("Reprojected Radiance")}}, "reprojected radiance");
-    ctx.drawFullscreen(prog.id(), fbo, ctx.width, ctx.height);
+    ctx.drawFullscreen(prog.id(), fbo, ctx.radiosityWidth(), ctx.radiosityHeight());
 }
 
 }  // namespace deepgi

@@ -2,8 +2,8 @@
 
 namespace deepgi {
 
-TextureDecl radiosityScratch() {
-    return {"Radiosity Scratch", {"Radiosity Scratch"}, GL_R11F_G11F_B10F, GL_TEXTURE_2D, SizeRule::screen(), 1,
+TextureDecl radiosityScratch(const PipelineConfig& c) {
+    return {"Radiosity Scratch", {"Radiosity Scratch"}, GL_R11F_G11F_B10F, GL_TEXTURE_2D, c.radiositySize(), 1,
             MemoryGroup::Scratch, Visualize::Radiance,
             "Scratch of the blur (horizontal result) and the temporal blend (blended result before the copy back)"};
 }
@@ -12,9 +12,9 @@ void TemporalBlendPass::table(const PipelineConfig& c, PassTable& t) const {
     readReprojectionInputs(t);
     t.read("Reprojected Radiance", "uReprojected");
     t.update("Output Radiance", "uCurrent").after(c.temporalFirst ? "" : "Bilateral blur");
-    t.scratch(radiosityScratch());
+    t.scratch(radiosityScratch(c));
     if (c.temporalFirst)
-        t.write({"Temporal History", {"Temporal History"}, GL_R11F_G11F_B10F, GL_TEXTURE_2D, SizeRule::screen(), 1,
+        t.write({"Temporal History", {"Temporal History"}, GL_R11F_G11F_B10F, GL_TEXTURE_2D, c.radiositySize(), 1,
                  MemoryGroup::Extra, Visualize::Radiance, "Temporally filtered, unblurred irradiance (temporal_first order only)"});
 }
 
@@ -25,11 +25,12 @@ void TemporalBlendPass::execute(FrameContext& ctx) {
     prog.reprojection.set(ctx);
     prog.alpha.set(s.hysteresis);
     ctx.bindSamplers(prog);
-    ctx.drawFullscreen(prog.id(), ctx.fbos.get({{GL_COLOR_ATTACHMENT0, scratch}}, "radiosity scratch"), ctx.width, ctx.height);
-    glCopyImageSubData(scratch, GL_TEXTURE_2D, 0, 0, 0, 0, output, GL_TEXTURE_2D, 0, 0, 0, 0, ctx.width, ctx.height, 1);
+    const int w = ctx.radiosityWidth(), h = ctx.radiosityHeight();
+    ctx.drawFullscreen(prog.id(), ctx.fbos.get({{GL_COLOR_ATTACHMENT0, scratch}}, "radiosity scratch"), w, h);
+    glCopyImageSubData(scratch, GL_TEXTURE_2D, 0, 0, 0, 0, output, GL_TEXTURE_2D, 0, 0, 0, 0, w, h, 1);
     if (ctx.config.temporalFirst)
         glCopyImageSubData(scratch, GL_TEXTURE_2D, 0, 0, 0, 0, ctx.texture("Temporal History"), GL_TEXTURE_2D, 0, 0,
-                           0, 0, ctx.width, ctx.height, 1);
+                           0, 0, w, h, 1);
 }
 
 }  // namespace deepgi

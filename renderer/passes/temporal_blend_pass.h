@@ -23,6 +23,6 @@ private:
 };
 
 // The ping-pong target of the blur and the temporal blend: content never outlives either pass.
-TextureDecl radiosityScratch();
+TextureDecl radiosityScratch(const PipelineConfig& c);
 
 }  // namespace deepgi
