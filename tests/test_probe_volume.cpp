@@ -401,6 +401,34 @@ TEST(ProbeVolume, UpdateCostIsBoundedAndDeterministic) {
                 double(rays + shadow) / (ms * 1e3), int(std::thread::hardware_concurrency()));
 }
 
+// After resetHistory() (the lights changed) the volume updates as a new one under the new lights: the same probes
+// in the same order with the same rotations, so (one bounce: the old irradiance feeds no bounce) identical atlases.
+// A viewer capture re-rendered headless relies on it (tests/test_viewer.cpp).
+TEST(ProbeVolume, ResetHistoryUpdatesAsANewVolume) {
+    const auto scene = deepgi::test::cornellScene();
+    Settings before;
+    before.probeRaysPerFrame = 1000;  // 7 probes of 128 rays per update: the round-robin restarts too
+    before.damping = 1.0f;
+    Settings after = before;
+    after.lightScale = 2.5f;
+    ProbeVolume changed(*scene, before, 5, 2), fresh(*scene, after, 5, 2);
+    for (int u = 0; u < 3; ++u) changed.update(before);
+    changed.resetHistory();
+    for (int u = 0; u < 3; ++u) {
+        changed.update(after);
+        fresh.update(after);
+    }
+    int updated = 0;
+    for (int i = 0; i < fresh.probeCount(); ++i) {
+        EXPECT_EQ(changed.updatesOf(i), fresh.updatesOf(i)) << "probe " << i;
+        updated += fresh.updatesOf(i);
+    }
+    EXPECT_EQ(updated, 21);
+    EXPECT_TRUE(changed.irradianceAtlas() == fresh.irradianceAtlas());
+    EXPECT_TRUE(changed.depthAtlas() == fresh.depthAtlas());
+    EXPECT_TRUE(changed.probeData() == fresh.probeData());
+}
+
 // Bad input: a scene without geometry is a clear error, never a crash.
 TEST(ProbeVolume, SceneWithoutGeometryIsAnError) {
     Scene empty;

@@ -383,13 +383,16 @@ fs::path onlyCapture(const fs::path& shots) {
 }
 
 // A viewer capture re-rendered headless from its camera.json and settings.json is the same image: both are llvmpipe
-// running the same shaders on the same camera (bit-identical matrices), so they may differ only by rasterisation
-// rounding between the GLX and OSMesa contexts. Tolerance: mean |difference| under 0.5/255 and 99.5 % of the pixels
-// within 2/255 per channel.
-// Disabled after the consistent gather and the probe pass landed: the re-render differs from the capture by 4.8/1000
-// mean (79 % of pixels within 2/255, not 99.5 %) with every GI source of frame-to-frame change pinned (one bounce,
-// fixed taps, probes frozen after one update); the cause is not yet found (issue 12 stays open on it).
-TEST_F(ViewerRound2, DISABLED_CaptureReRendersHeadlessWithTheSameImage) {
+// running the same shaders on the same camera (bit-identical matrices) with the same settled probe volume, so they
+// may differ only by rasterisation rounding between the GLX and OSMesa contexts and by the stochastic rounding of
+// R11F_G11F_B10F stores, whose dither is keyed on the frame index (common.glsl; the viewer's frame number is not the
+// render's third): at most one step of those formats per store. Tolerance: mean |difference| under 0.5/255 and
+// 99.5 % of the pixels within 2/255 per channel.
+// Both sides settle the probes after one update of every probe (kNoProbes). The property this needs and checks:
+// the settled probe state does not depend on the way there. After its first frame the viewer reallocates its
+// textures (the sidebar hidden, temporal.enabled=false), which once updated the probes again (another random rotation
+// blended in: 4.8/1000 mean, 79 % within 2/255, probe-shaped blotches); now it only uploads them again.
+TEST_F(ViewerRound2, CaptureReRendersHeadlessWithTheSameImage) {
     ViewerRun r = view(std::string(kSetup) + "drag middle 240 150 270 160\nwait 1\ncapture\nwait 1\n",
                        "--screenshots '" + path("shots") + "'");
     ASSERT_EQ(r.rc, 0) << r.log;
@@ -527,9 +530,10 @@ Region bufferRegion(std::map<std::string, std::string>& d) {
 // empty layer-2 texels left out and hatched), the shadow map shown as grey depth, the registry's description, and
 // error views of the frame against a reference that is the same view at twice the radiance (answer: ratio of
 // means 0.5, relative L1 0.5, relative error 0.5 everywhere but black pixels).
-// Disabled with the capture test above, for the same open cause: the live frame drifts 2 % from the captured one
-// that serves as the twice-as-bright reference, so the exact 0.5 figures read 0.489 / 0.516.
-TEST_F(ViewerRound2, DISABLED_InspectorReadoutStatsHatchDepthAndErrorViews) {
+// The reference is a headless render of run 1's capture (the capture test above: the same image); run 2 reaches the
+// same settled probes although its script changes the shadow map size after the first frame (a light change, which
+// restarts the probes as a new volume would).
+TEST_F(ViewerRound2, InspectorReadoutStatsHatchDepthAndErrorViews) {
     // Run 1: the layout of the inspector, and a capture of this view for the reference.
     ViewerRun r = viewAt(std::string(kInspectSetup) + "inspect \"Normal 2\"\nwait 2\ndump_figures layout.txt\ncapture\nwait 1\n",
                          std::string(kBig) + " --screenshots '" + path("shots") + "'");

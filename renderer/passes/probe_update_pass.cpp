@@ -34,11 +34,12 @@ void ProbeUpdatePass::execute(FrameContext& ctx) {
     for (int i = 0; i < v.probeCount(); ++i)
         if (v.state(i) == ProbeState::Active) fewest = std::min(fewest, v.updatesOf(i));
     const int settle = ctx.settings.probeSettleUpdates;
-    const bool settled = settle > 0 && v.activeProbeCount() > 0 && fewest >= settle && uploadedVolume_ == &v &&
-                         uploadedGeneration_ == ctx.textures.generation();
-    if (settled) return;  // converged under these lights: nothing changes
-    v.update(ctx.settings);
+    const bool settled = settle > 0 && v.activeProbeCount() > 0 && fewest >= settle;
     const bool all = uploadedGeneration_ != ctx.textures.generation() || uploadedVolume_ != &v;
+    if (settled && !all) return;  // converged under these lights: nothing changes
+    // New textures (a resize, a pipeline change) only need the settled state uploaded again: another update would
+    // make the probes, and so the image, depend on how many times the textures were reallocated.
+    if (!settled) v.update(ctx.settings);
     v.uploadTextures(ctx.texture("Probe Irradiance"), ctx.texture("Probe Depth"), ctx.texture("Probe Data"), all);
     uploadedGeneration_ = ctx.textures.generation();
     uploadedVolume_ = &v;

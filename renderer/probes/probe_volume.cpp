@@ -285,7 +285,13 @@ bool ProbeVolume::converging() const {
     return false;
 }
 
-void ProbeVolume::resetHistory() { std::fill(updates_.begin(), updates_.end(), 0); }
+// The rotations and the round-robin restart too: the volume then updates as a new one would under these lights,
+// whatever came before (a capture re-rendered headless matches the viewer that changed its lights on the way).
+void ProbeVolume::resetHistory() {
+    std::fill(updates_.begin(), updates_.end(), 0);
+    updateIndex_ = 0;
+    cursor_ = 0;
+}
 
 template <int C>
 glm::vec<C, float> ProbeVolume::sampleAtlas(const std::vector<float>& atlas, int n, int probe,

@@ -107,7 +107,8 @@ public:
     // them (at least one; a probe's rays are capped at probes.rays_per_frame), each with probes.rays_per_probe
     // rays in a direction set rotated at random every update. Lights come from effectiveLights(scene, settings).
     ProbeUpdateStats update(const Settings& settings);
-    // Restarts every probe's history (e.g. after the lights moved): the next update of a probe replaces it.
+    // Restarts every probe's history (e.g. after the lights moved): the next update of a probe replaces it, and the
+    // updates from then on (rotations, round-robin order) are those of a new volume.
     void resetHistory();
 
     // Irradiance at world position x on a surface of unit normal n, as shaders/probe_volume.glsl computes it.
