@@ -61,9 +61,9 @@ protected:
         return *renderer_;
     }
     // Rewrites composite.frag so that the display output is pure red; with loops > 0 every pixel first runs a loop
-    // of that many iterations of eight sines and cosines that the output depends on. llvmpipe ends a shader
-    // invocation's loops after 65535 iterations in all (900^2 and 2000^2 nested iterations took the same time), so
-    // the work per iteration, not the count, makes it slow.
+    // of that many iterations of eight sines and cosines that the output depends on. llvmpipe caps loop
+    // iterations (nested loops of 900^2 and 2000^2 iterations took the same time), so the work per iteration, not
+    // the count, makes it slow.
     void editComposite(int loops) {
         const fs::path file = dir_ / "composite.frag";
         std::ifstream in(file);
