@@ -23,6 +23,7 @@
 #include <chrono>
 #include <ctime>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <stdexcept>
 
@@ -42,6 +43,10 @@ struct GpuLight {
     glm::vec4 radiance, position, direction, params;
     glm::mat4 shadowMatrix;
 };
+
+double steadyMs() {
+    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now().time_since_epoch()).count();
+}
 
 float projScale(const Camera& c, int height) {
     return c.perspective ? float(height) / (2.0f * std::tan(0.5f * c.yfov)) : float(height) / (2.0f * c.orthoHalfHeight);
@@ -142,6 +147,9 @@ PipelineConfig Renderer::makeConfig(const Settings& s) const {
 
 void Renderer::setupLights(const Settings& s) {
     const std::vector<Light> lights = effectiveLights(*scene_, s);
+    if (lights.size() > size_t(kMaxGpuLights))
+        throw std::runtime_error((scene_->sourcePath.empty() ? std::string("scene") : scene_->sourcePath) + ": " + std::to_string(lights.size()) + " lights, more than the " +
+                                 std::to_string(kMaxGpuLights) + " the renderer draws (shaders/lighting.glsl MAX_LIGHTS)");
     const Aabb& b = scene_->bounds;
     const glm::vec3 center = b.valid() ? b.center() : glm::vec3(0.0f);
     const float R = std::max(b.radius(), 1e-6f);
@@ -364,8 +372,17 @@ void Renderer::render(const Settings& user) {
     }
     if (finish) glFinish();
     size_t q = 0;
+    bool rejected = false;  // a program failed its trial: this frame's outputs must not feed the next
     for (size_t index : order_) {
         RenderPass* p = passes_[index].get();
+        // Watchdog frames time each pass alone: earlier passes' work is finished first, and uses of programs on
+        // trial outside the passes (the viewer's buffer views) are forgotten.
+        const bool watch = s.shaderWatchdogMs > 0 && shaders_->anyOnTrial();
+        if (watch) {
+            glFinish();
+            shaders_->takeTrialUses();
+        }
+        const double watchStart = steadyMs();
         auto t0 = clock::now();
         const double c0 = cpu ? threadCpuMs() : 0.0;
         if (gpu) {
@@ -381,15 +398,42 @@ void Renderer::render(const Settings& user) {
             glEndQuery(GL_TIME_ELAPSED);
             queryNames.push_back(p->name());
             ++q;
-        } else if (finish) {
+        }
+        if (watch && !checkTrials(p->name(), s.shaderWatchdogMs, watchStart)) rejected = true;
+        if (!gpu && finish) {
             glFinish();
             timings_.push_back({p->name(), cpu ? threadCpuMs() - c0 : std::chrono::duration<double, std::milli>(clock::now() - t0).count()});
         }
     }
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
     prevCamera_ = camera_;
-    historyValid_ = true;
+    historyValid_ = !rejected;
     ++frameIndex_;
+}
+
+bool Renderer::checkTrials(const char* passName, int limitMs, double startMs) {
+    const std::vector<std::string> used = shaders_->takeTrialUses();
+    if (used.empty()) return true;
+    // A fence after the pass's commands, waited on for what is left of the limit (flushing them).
+    GLsync fence = glFenceSync(GL_SYNC_GPU_COMMANDS_COMPLETE, 0);
+    const double left = std::max(0.0, double(limitMs) - (steadyMs() - startMs));
+    const GLenum r = glClientWaitSync(fence, GL_SYNC_FLUSH_COMMANDS_BIT, GLuint64(left * 1e6));
+    // Also over the limit: draw calls that did their work on this thread (llvmpipe's vertex stages, or all of it
+    // with LP_NUM_THREADS=0) before the fence existed.
+    const bool slow = r == GL_TIMEOUT_EXPIRED || r == GL_WAIT_FAILED || steadyMs() - startMs > double(limitMs);
+    if (!slow) {
+        for (const auto& key : used) shaders_->passTrial(key);
+    } else {
+        glFinish();  // the slow program may still be running: let it finish before it is deleted
+        char reason[256];
+        std::snprintf(reason, sizeof(reason),
+                      "pass '%s' took %.0f ms on a frame after the hot reload, over debug.shader_watchdog_ms = %d; "
+                      "the previous program is restored",
+                      passName, steadyMs() - startMs, limitMs);
+        for (const auto& key : used) shaders_->failTrial(key, reason);
+    }
+    glDeleteSync(fence);
+    return !slow;
 }
 
 FrameContext Renderer::makeContext(const Settings& s) {

@@ -115,6 +115,9 @@ private:
     FrameContext makeContext(const Settings& s);
     void buildPipeline();
     void runPass(size_t index, FrameContext& ctx);
+    // The slow-shader watchdog: the programs on trial that the pass just used pass if its work finishes within
+    // limitMs of startMs (steady-clock ms), else they get their previous programs back. Returns false on a failure.
+    bool checkTrials(const char* passName, int limitMs, double startMs);
 
     RendererOptions options_;
     std::unique_ptr<gl::ShaderLibrary> shaders_;

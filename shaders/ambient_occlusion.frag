@@ -42,8 +42,8 @@ void main() {
     float r2 = uRadius * uRadius;
     float eps = 1e-4 * r2;
     float sum = 0.0;
-    int layers = uUseLayer2 != 0 ? 2 : 1;
-    for (int i = 0; i < uNumSamples; ++i) {
+    for (int i = 0; i < MAX_SPIRAL_TAPS; ++i) {
+        if (i >= uNumSamples) break;
         float h;
         vec2 dir = spiralTap(i, uNumSamples, uSpiralTurns, phi, jitter, rss, h);
         ivec2 Y = pix + ivec2(h * dir);
@@ -52,7 +52,8 @@ void main() {
         ivec2 T = Y >> m;
         vec2 P = vec2(sourcePixel(T, m, size)) + 0.5;
         float best = 0.0;
-        for (int j = 0; j < layers; ++j) {
+        for (int j = 0; j < 2; ++j) {
+            if (j == 1 && uUseLayer2 == 0) break;
             float dj = texelFetch(uDepth, ivec3(T, j), m).r;
             if (isSky(dj)) continue;
             vec3 v = viewFromDepth(P, dj) - X;

@@ -6,11 +6,12 @@ uniform sampler2DArray uDepth;
 uniform sampler2DArray uNormal;
 uniform sampler2D uSource;
 uniform ivec2 uAxis;
-uniform int uRadius;     // 1..6
+const int MAX_BLUR_RADIUS = 6;  // blur.radius
+uniform int uRadius;     // 1..MAX_BLUR_RADIUS
 uniform int uStep;
 uniform float uEdgeSharpness;
 uniform int uMonotonic;
-uniform float uKernel[7];
+uniform float uKernel[MAX_BLUR_RADIUS + 1];
 uniform float uPlaneEpsilon2;  // squared distance under which a tap is trusted without the plane test
 layout(location = 0) out vec3 oValue;
 
@@ -52,7 +53,8 @@ void main() {
     float total = uKernel[0];
     for (int side = -1; side <= 1; side += 2) {
         float lastB = 1.0;
-        for (int r = 1; r <= uRadius; ++r) {
+        for (int r = 1; r <= MAX_BLUR_RADIUS; ++r) {
+            if (r > uRadius) break;
             ivec2 tp = pix + uAxis * (side * r * uStep);
             if (any(lessThan(tp, ivec2(0))) || any(greaterThanEqual(tp, size))) break;
             float b = bilateral(C, nC, tp);

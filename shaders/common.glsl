@@ -26,6 +26,11 @@ ivec2 screenPixelOfRadiosity(ivec2 p) {
 ivec2 radiosityPixelOfScreen(ivec2 pix) { return min(pix / int(uRadiosityGrid.x), ivec2(uRadiosityGrid.yz) - 1); }
 
 const float PI = 3.14159265358979;
+// Compile-time bounds of every loop whose count is a uniform (a loop runs to a constant maximum and breaks at the
+// count, so no uniform value can make a shader run unbounded). Each is at least its setting's maximum in
+// renderer/core/settings.def (tests/test_shader_loops.cpp checks that).
+const int MAX_SPIRAL_TAPS = 99;   // radiosity.samples
+const int MAX_MIP_LEVELS = 16;    // mip levels of a texture up to 32768 texels
 // The R11F_G11F_B10F maximum of the B channel (R and G reach 65024): one limit for all three channels, so a clamped
 // pixel stays grey.
 const float MAX_RADIANCE = 64512.0;
@@ -111,6 +116,10 @@ vec2 spiralTap(int i, int n, float turns, float phi, float jitter, float rss, ou
 // The full-resolution pixel whose sample mip texel T of level m holds: gather_mips.frag's rotated-grid choice,
 // q = clamp(2p + (p.y & 1, p.x & 1)), followed back to level 0. size = level-0 size.
 ivec2 sourcePixel(ivec2 T, int m, ivec2 size) {
-    for (int k = m; k > 0; --k) T = clamp(T * 2 + ivec2(T.y & 1, T.x & 1), ivec2(0), max(size >> (k - 1), ivec2(1)) - 1);
+    for (int i = 0; i < MAX_MIP_LEVELS; ++i) {
+        if (i >= m) break;
+        int k = m - i;
+        T = clamp(T * 2 + ivec2(T.y & 1, T.x & 1), ivec2(0), max(size >> (k - 1), ivec2(1)) - 1);
+    }
     return T;
 }

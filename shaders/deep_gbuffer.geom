@@ -8,7 +8,9 @@ out GS { vec3 world; vec3 normal; vec2 uv; } gs;
 uniform int uFirstLayer;  // 0, or 1 for the second pass of depth peeling
 uniform int uLayerCount;  // 1 or 2
 void main() {
-    for (int layer = uFirstLayer; layer < uFirstLayer + uLayerCount; ++layer) {
+    for (int k = 0; k < 2; ++k) {
+        if (k >= uLayerCount) break;
+        int layer = uFirstLayer + k;
         for (int i = 0; i < 3; ++i) {
             gl_Layer = layer;  // set before every EmitVertex: outputs are undefined after it
             gs.world = vs[i].world;

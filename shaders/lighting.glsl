@@ -7,6 +7,7 @@ struct GpuLight {
     mat4 shadowMatrix;  // world -> shadow clip (directional, spot)
 };
 layout(std430, binding = 1) readonly buffer Lights { GpuLight uLights[]; };
+const int MAX_LIGHTS = 16384;  // kMaxGpuLights (renderer/scene/lighting.h); the renderer refuses more
 uniform int uLightCount;
 uniform float uShadowBias;  // in shadow-map texels
 uniform sampler2DArrayShadow uShadowMaps;
@@ -47,7 +48,8 @@ float shadowFactor(GpuLight L, vec3 P, vec3 n, vec3 toLight, float dist) {
 // Shadowed irradiance on the surface at P with unit normal n.
 vec3 directIrradiance(vec3 P, vec3 n) {
     vec3 E = vec3(0.0);
-    for (int i = 0; i < uLightCount; ++i) {
+    for (int i = 0; i < MAX_LIGHTS; ++i) {
+        if (i >= uLightCount) break;
         GpuLight L = uLights[i];
         int type = int(L.radiance.w);
         vec3 toLight;

@@ -219,6 +219,37 @@ TEST_F(Viewer, HotReloadAndBrokenShader) {
     EXPECT_GT(overlay, 0.3);
 }
 
+// The slow-shader watchdog (issue 11) in the viewer: a hot-reloaded composite.frag that takes seconds per frame is
+// named in the error overlay and the previous program draws again (tests/test_shader_watchdog.cpp has the details).
+TEST_F(Viewer, SlowShaderAfterHotReloadIsReportedAndReverted) {
+    fs::copy(DEEPGI_SHADER_DIR, path("shaders"), fs::copy_options::recursive);
+    const std::string frag = path("shaders/composite.frag");
+    // Red, after 11000 iterations of two trigonometric calls per pixel: about 5 s a frame here with one llvmpipe
+    // thread, against a limit of 1.5 s (a fast program's first frame, JIT included, takes under 0.4 s).
+    ViewerRun r = view(std::string(kSetup) +
+                 "screenshot before.png\n"
+                 "shell sed -i 's/oDisplay = vec4(/float slow = 0.0; for (int i = 0; i < 11000; ++i) { float t = float(i) * 1e-3 + "
+                 "gl_FragCoord.x; slow += sin(t) * cos(1.7 * t); } oDisplay = vec4(1.0, 1e-30 * slow, 0.0, 1.0) + 0.0 * vec4(/' '" + frag + "'\n"
+                 "sleep 1.5\nwait 3\nscreenshot after.png\ndump_errors errors.txt\n",
+                 "--set debug.shader_watchdog_ms=1500 --shaders '" + path("shaders") + "'");
+    ASSERT_EQ(r.rc, 0) << r.log;
+    std::ifstream errIn(path("errors.txt"));
+    const std::string errors((std::istreambuf_iterator<char>(errIn)), {});
+    std::printf("%s", errors.c_str());
+    EXPECT_NE(errors.find("composite.frag"), std::string::npos) << errors;
+    EXPECT_NE(errors.find("pass 'Composite'"), std::string::npos) << errors;
+    EXPECT_NE(errors.find("previous program is restored"), std::string::npos) << errors;
+    auto before = shot("before.png"), after = shot("after.png");
+    // The previous program draws the same image above the overlay (not the red of the slow one)...
+    Region top{0, 60, kW, 120};
+    std::printf("after the revert: mean difference %.4f to the image before, red %.3f\n", meanAbsDiff(before, after, top),
+                meanChannel(after, 0, top));
+    EXPECT_LT(meanAbsDiff(before, after, top), 0.01);
+    // ...and the overlay (dark red panel) covers the bottom of the viewport.
+    Region bottom{0, kH - 60, kW, kH - 10};
+    EXPECT_GT(fractionNear(after, 150.0f / 255.0f, 20.0f / 255.0f, 20.0f / 255.0f, 0.08f, bottom), 0.3);
+}
+
 TEST_F(Viewer, F12WritesAScreenshotFolder) {
     ViewerRun r = view(std::string(kSetup) + "capture\nwait 1\n", "--screenshots '" + path("shots") + "'");
     ASSERT_EQ(r.rc, 0) << r.log;

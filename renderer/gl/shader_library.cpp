@@ -2,6 +2,7 @@
 
 #include <sys/stat.h>
 
+#include <algorithm>
 #include <fstream>
 #include <regex>
 #include <set>
@@ -127,7 +128,10 @@ std::string mapLog(const std::string& log, const std::vector<std::string>& names
 ShaderLibrary::ShaderLibrary(std::string dir) : dir_(std::move(dir)) {}
 
 ShaderLibrary::~ShaderLibrary() {
-    for (auto& [k, e] : entries_) if (e.program) glDeleteProgram(e.program);
+    for (auto& [k, e] : entries_) {
+        if (e.program) glDeleteProgram(e.program);
+        if (e.previous) glDeleteProgram(e.previous);
+    }
 }
 
 void ShaderLibrary::setDirectory(const std::string& dir) {
@@ -193,7 +197,11 @@ GLuint ShaderLibrary::get(const ProgramDesc& desc) { return getBuilt(desc).id; }
 ShaderLibrary::Built ShaderLibrary::getBuilt(const ProgramDesc& desc) {
     const std::string key = desc.key();
     auto it = entries_.find(key);
-    if (it != entries_.end() && it->second.program) return {it->second.program, it->second.serial};
+    if (it != entries_.end() && it->second.program) {
+        if (it->second.trialUsesLeft > 0 && std::find(trialUses_.begin(), trialUses_.end(), key) == trialUses_.end())
+            trialUses_.push_back(key);
+        return {it->second.program, it->second.serial};
+    }
     Entry e;
     e.desc = desc;
     e.program = build(desc, e.files);  // throws on the first build
@@ -215,7 +223,13 @@ int ShaderLibrary::reloadChanged() {
         std::map<std::string, int64_t> files;
         try {
             GLuint p = build(e.desc, files);
-            if (e.program) glDeleteProgram(e.program);
+            // The last program that passed its trial stays as the one to go back to; an untried one is dropped.
+            if (e.trialUsesLeft > 0) endTrial(e, false);
+            if (e.program) {
+                e.previous = e.program;
+                e.trialUsesLeft = kTrialUses;
+                ++trials_;
+            }
             e.program = p;
             e.serial = nextSerial_++;
             e.error.clear();
@@ -229,6 +243,42 @@ int ShaderLibrary::reloadChanged() {
         for (auto& [path, mt] : e.files) mt = mtimeOf(path);
     }
     return rebuilt;
+}
+
+void ShaderLibrary::endTrial(Entry& e, bool keepNew) {  // e is on trial
+    if (keepNew) {
+        glDeleteProgram(e.previous);
+    } else {
+        glDeleteProgram(e.program);
+        e.program = e.previous;
+        e.serial = nextSerial_++;
+    }
+    e.previous = 0;
+    e.trialUsesLeft = 0;
+    --trials_;
+}
+
+std::vector<std::string> ShaderLibrary::takeTrialUses() {
+    std::vector<std::string> used;
+    used.swap(trialUses_);
+    return used;
+}
+
+void ShaderLibrary::passTrial(const std::string& key) {
+    auto it = entries_.find(key);
+    if (it == entries_.end() || it->second.trialUsesLeft <= 0) return;
+    if (it->second.trialUsesLeft == 1) endTrial(it->second, true);
+    else --it->second.trialUsesLeft;
+}
+
+void ShaderLibrary::failTrial(const std::string& key, const std::string& reason) {
+    auto it = entries_.find(key);
+    if (it == entries_.end() || it->second.trialUsesLeft <= 0) return;
+    Entry& e = it->second;
+    endTrial(e, false);
+    // Listed like a compile error, until a file of the program changes again (reloadChanged).
+    e.error = dir_ + "/" + e.desc.label() + ": " + reason;
+    errors_.push_back(e.error);
 }
 
 int ShaderLibrary::reloadAll() {

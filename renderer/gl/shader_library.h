@@ -1,6 +1,8 @@
 #pragma once
 // Shader programs built from files in the shader folder, with `#include "file"` and injected #defines.
-// Compile errors name the file and line. A program that fails to rebuild keeps its last good version.
+// Compile errors name the file and line. A program that fails to rebuild keeps its last good version; one that
+// rebuilds is on trial for its first uses (the slow-shader watchdog, Renderer::render) and can be given its
+// previous version back.
 #include <glad/gl.h>
 
 #include <cstdint>
@@ -45,6 +47,17 @@ public:
     int reloadChanged();
     int reloadAll();
     const std::vector<std::string>& errors() const { return errors_; }
+
+    // Trials: a program rebuilt by a reload keeps the one it replaced alive until it has finished kTrialUses uses in
+    // time (passTrial) or failed one (failTrial: the previous program is back, the reason listed in errors()).
+    static constexpr int kTrialUses = 3;
+    bool anyOnTrial() const { return trials_ > 0; }
+    // Keys of the programs on trial that get()/getBuilt() returned since the last call.
+    std::vector<std::string> takeTrialUses();
+    void passTrial(const std::string& key);
+    // Restores the previous program (a new serial: typed wrappers look their uniforms up again); `reason` follows
+    // the program's file in the message ("<dir>/composite.frag: <reason>").
+    void failTrial(const std::string& key, const std::string& reason);
     const std::string& directory() const { return dir_; }
     void setDirectory(const std::string& dir);
 
@@ -55,12 +68,17 @@ private:
         uint64_t serial = 0;
         std::map<std::string, int64_t> files;  // path -> mtime at last build attempt
         std::string error;
+        GLuint previous = 0;   // the program `program` replaced, kept while `program` is on trial
+        int trialUsesLeft = 0; // > 0: on trial
     };
+    void endTrial(Entry& e, bool keepNew);
     GLuint build(const ProgramDesc& desc, std::map<std::string, int64_t>& files);
     std::string dir_;
     std::map<std::string, Entry> entries_;
     std::vector<std::string> errors_;
     uint64_t nextSerial_ = 1;
+    int trials_ = 0;                     // entries on trial
+    std::vector<std::string> trialUses_; // keys of programs on trial handed out since takeTrialUses()
 };
 
 }  // namespace deepgi::gl

@@ -8,6 +8,10 @@
 
 namespace deepgi {
 
+// Most lights the GL renderer draws: MAX_LIGHTS of shaders/lighting.glsl, the constant bound of its light loop
+// (the shadow-map layers, GL_MAX_ARRAY_TEXTURE_LAYERS, run out well before it). More is an error of the renderer.
+inline constexpr int kMaxGpuLights = 16384;
+
 // The scene's lights scaled by light.intensity_scale, or the default sun from the settings when it has none.
 std::vector<Light> effectiveLights(const Scene& scene, const Settings& s);
 
