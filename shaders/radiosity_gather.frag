@@ -24,6 +24,7 @@ uniform float uTime;  // varies the pattern per frame when temporally varying ta
 layout(location = 0) out vec3 oIrradiance;
 layout(location = 1) out float oCoverage;
 uniform float uThickness;      // assumed thickness behind a layer-1 surface where layer 2 does not bound it
+const int MAX_VISIBILITY_STEPS = 16;  // radiosity.visibility_steps
 uniform int uVisibilitySteps;  // march steps per tap (0 = no visibility test)
 #ifdef DEEPGI_PROBES
 #include "probe_volume.glsl"
@@ -56,7 +57,8 @@ int mipFor(float h) { return clamp(findMSB(max(int(h), 1)) - uLogMaxOffset, uMin
 // True if some point of the segment X -> Y (pixel distance hY on screen) lies inside a surface: behind layer 1 by
 // less than the surface's thickness (the interval up to layer 2, at most uThickness).
 bool marchOccluded(vec3 X, vec3 Y, float hY, float jitter, ivec2 size, bool twoLayers) {
-    for (int k = 0; k < uVisibilitySteps; ++k) {
+    for (int k = 0; k < MAX_VISIBILITY_STEPS; ++k) {
+        if (k >= uVisibilitySteps) break;
         float t = (float(k) + jitter) / float(uVisibilitySteps);
         vec3 P = mix(X, Y, t);
         ivec2 q = ivec2(toPixel(P));
@@ -135,7 +137,8 @@ void main() {
     float covered = 0.0;
     // Tap radii are uniform in [0, rss]: a tap at h stands for 2*pi*h*rss/N pixels^2 of the disk.
     float areaPerH = 2.0 * PI * rss / float(uNumSamples);
-    for (int i = 0; i < uNumSamples; ++i) {
+    for (int i = 0; i < MAX_SPIRAL_TAPS; ++i) {
+        if (i >= uNumSamples) break;
         float h;
         vec2 dir = spiralTap(i, uNumSamples, uSpiralTurns, phi, jitter, rss, h);
         ivec2 Yp = pix + ivec2(h * dir);
