@@ -2,13 +2,13 @@
 // Final image. physical: L = Le + albedo/pi * (E_direct + E_indirect), indirect counted once.
 // seed: L = E_input1 + E_output * albedo (the seed's formula, kept to measure its error).
 #include "common.glsl"
-#include "lighting.glsl"
 uniform sampler2DArray uDepth;
 uniform sampler2DArray uAlbedo;
 uniform sampler2DArray uNormal;
 uniform sampler2DArray uEmission;
 uniform sampler2DArray uRadiance;   // Input Radiance 1/2
 uniform sampler2D uIndirect;        // Output Radiance
+uniform sampler2D uDirect;          // Direct Irradiance (layer 1)
 uniform int uHasEmission;
 uniform int uIndirectOn;
 uniform int uSeedMode;
@@ -73,7 +73,7 @@ void main() {
         if (uSeedMode != 0) {
             L = texelFetch(uRadiance, ivec3(pix, 0), 0).rgb + E * albedo;
         } else {
-            L = albedo / PI * (directIrradiance(P, n) + E);
+            L = albedo / PI * (texelFetch(uDirect, pix, 0).rgb + E);
             if (uHasEmission != 0) L += texelFetch(uEmission, ivec3(pix, 0), 0).rgb;
         }
     }

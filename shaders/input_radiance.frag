@@ -16,14 +16,16 @@ uniform float uDamping;
 #include "probe_volume.glsl"
 #endif
 layout(location = 0) out vec3 oRadiance;
+layout(location = 1) out vec4 oDirect;  // layer 1's direct irradiance (Direct Irradiance), for the composite
 void main() {
     ivec2 pix = ivec2(gl_FragCoord.xy);
     float d = texelFetch(uDepth, ivec3(pix, uLayer), 0).r;
-    if (isSky(d)) { oRadiance = vec3(0.0); return; }
+    if (isSky(d)) { oRadiance = vec3(0.0); oDirect = vec4(0.0); return; }
     vec3 P = worldFromDepth(vec2(pix) + 0.5, d, uInvViewProj);
     vec3 n = octDecode(texelFetch(uNormal, ivec3(pix, uLayer), 0).rg);
     vec3 albedo = texelFetch(uAlbedo, ivec3(pix, uLayer), 0).rgb;
     vec3 E = directIrradiance(P, n);
+    oDirect = vec4(sanitize(E), 1.0);
     if (uFeedback != 0 && uLayer == 0) E += (1.0 - uDamping) * texelFetch(uReprojected, radiosityPixelOfScreen(pix), 0).rgb;
 #ifdef DEEPGI_PROBES
     // Layer 2 has no gathered light of its own, nor layer 1 before there is a history: the probes give theirs.

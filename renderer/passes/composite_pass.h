@@ -13,7 +13,6 @@ public:
 private:
     struct Program : gl::Program {
         using gl::Program::Program;
-        LightingUniforms lighting{*this};
         gl::Uniform<bool> hasEmission{*this, "uHasEmission"};
         gl::Uniform<bool> indirectOn{*this, "uIndirectOn"};
         gl::Uniform<bool> seedMode{*this, "uSeedMode"};

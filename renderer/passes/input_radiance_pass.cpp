@@ -20,15 +20,21 @@ void InputRadiancePass::table(const PipelineConfig& c, PassTable& t) const {
     t.read("Reprojected Radiance", "uReprojected").optional(!c.indirect);  // the multi-bounce feedback
     readShadowMaps(t);
     if (c.probes) readProbeVolume(t);  // layer 2's indirect light, and layer 1's before there is a history
-    t.write({"Input Radiance", {"Input Radiance 1", "Input Radiance 2"}, GL_R11F_G11F_B10F, GL_TEXTURE_2D_ARRAY,
-             SizeRule::screen(), 6, MemoryGroup::Radiosity, Visualize::Radiance,
-             "Outgoing radiance of both layers (what the gather collects)"},
-            "uRadiance");
+    if (c.indirect || c.seedComposite)
+        t.write({"Input Radiance", {"Input Radiance 1", "Input Radiance 2"}, GL_R11F_G11F_B10F, GL_TEXTURE_2D_ARRAY,
+                 SizeRule::screen(), 6, MemoryGroup::Radiosity, Visualize::Radiance,
+                 "Outgoing radiance of both layers (what the gather collects)"},
+                "uRadiance");
+    // Half floats: the direct light keeps 11 bits of precision (R11G11B10's 6 would put 1.5 % steps in it).
+    t.write({"Direct Irradiance", {"Direct Irradiance"}, GL_RGBA16F, GL_TEXTURE_2D, SizeRule::screen(), 1,
+             MemoryGroup::Extra, Visualize::Radiance,
+             "Shadowed direct irradiance at layer 1 from every light, evaluated once (the composite reads it)"});
 }
 
 void InputRadiancePass::execute(FrameContext& ctx) {
     const RadiositySettings& s = ctx.settings;
-    const GLuint radiance = ctx.texture("Input Radiance");
+    const bool radianceOut = ctx.config.indirect || ctx.config.seedComposite;
+    const GLuint radiance = radianceOut ? ctx.texture("Input Radiance") : 0, direct = ctx.texture("Direct Irradiance");
     std::vector<std::string> defines;
     if (ctx.config.probes) defines.push_back("DEEPGI_PROBES");
     RadianceProgram& prog = radiance_.get(ctx.shaders, {"fullscreen.vert", "", "input_radiance.frag", "", defines});
@@ -38,10 +44,13 @@ void InputRadiancePass::execute(FrameContext& ctx) {
     prog.feedback.set(ctx.config.indirect && ctx.historyValid);
     prog.damping.set(s.damping);
     ctx.bindSamplers(prog);
-    const int layers = ctx.config.layer2 ? 2 : 1;  // no layer-2 work when layer 2 is off
+    // No layer-2 work when layer 2 is off, nor without indirect light (layer 1's direct light only).
+    const int layers = radianceOut && ctx.config.layer2 ? 2 : 1;
     for (int layer = 0; layer < layers; ++layer) {
         prog.layer.set(layer);
-        GLuint fbo = ctx.fbos.get({{GL_COLOR_ATTACHMENT0, radiance, 0, layer}}, "input radiance");
+        GLuint fbo = !radianceOut ? ctx.fbos.get({{GL_COLOR_ATTACHMENT1, direct}}, "direct irradiance")
+                     : layer == 0 ? ctx.fbos.get({{GL_COLOR_ATTACHMENT0, radiance, 0, layer}, {GL_COLOR_ATTACHMENT1, direct}}, "input radiance 1")
+                                  : ctx.fbos.get({{GL_COLOR_ATTACHMENT0, radiance, 0, layer}}, "input radiance");
         ctx.drawFullscreen(prog.id(), fbo, ctx.width, ctx.height);
     }
     if (!ctx.config.indirect) return;

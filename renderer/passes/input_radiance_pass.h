@@ -3,13 +3,14 @@
 
 namespace deepgi {
 
-// Outgoing radiance of both layers (shadowed direct light + emission, plus last frame's indirect light on
-// layer 1: one more bounce per frame), then the rotated-grid mip chains of depth, normal and radiance.
+// The one evaluation of direct light: shadowed direct irradiance at layer 1 (Direct Irradiance, which the composite
+// reads), and with indirect light the outgoing radiance of both layers (direct light + emission, plus last frame's
+// indirect light on layer 1: one more bounce per frame), then the rotated-grid mip chains of depth, normal and
+// radiance.
 class InputRadiancePass final : public RenderPass {
 public:
     const char* name() const override { return "Input radiance"; }
     void table(const PipelineConfig& c, PassTable& t) const override;
-    bool enabled(const PipelineConfig& c) const override { return c.indirect || c.seedComposite; }
     void execute(FrameContext& ctx) override;
 
 private:

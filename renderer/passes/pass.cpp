@@ -68,7 +68,12 @@ GLuint FramebufferCache::get(const std::vector<Attachment>& atts, const std::str
     for (const auto& a : atts) {
         if (a.layer < 0) glNamedFramebufferTexture(fbo.id(), a.point, a.texture, a.level);
         else glNamedFramebufferTextureLayer(fbo.id(), a.point, a.texture, a.level, a.layer);
-        if (a.point >= GL_COLOR_ATTACHMENT0 && a.point <= GL_COLOR_ATTACHMENT15) draws.push_back(a.point);
+        // Fragment output location k writes colour attachment k; locations without an attachment write nothing.
+        if (a.point >= GL_COLOR_ATTACHMENT0 && a.point <= GL_COLOR_ATTACHMENT15) {
+            const size_t k = size_t(a.point - GL_COLOR_ATTACHMENT0);
+            if (draws.size() <= k) draws.resize(k + 1, GL_NONE);
+            draws[k] = a.point;
+        }
     }
     if (draws.empty()) glNamedFramebufferDrawBuffer(fbo.id(), GL_NONE);
     else glNamedFramebufferDrawBuffers(fbo.id(), GLsizei(draws.size()), draws.data());
