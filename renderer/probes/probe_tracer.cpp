@@ -1,5 +1,7 @@
 #include "renderer/probes/probe_tracer.h"
 
+#include "renderer/reference/traced_surface.h"
+
 #include "renderer/core/image_io.h"
 
 #include <embree3/rtcore.h>
@@ -16,101 +18,9 @@ namespace {
 
 constexpr float kInf = std::numeric_limits<float>::infinity();
 
-const std::array<float, 256>& srgbLut() {
-    static const std::array<float, 256> table = [] {
-        std::array<float, 256> t{};
-        for (int i = 0; i < 256; ++i) t[i] = srgbToLinear(float(i) / 255.0f);
-        return t;
-    }();
-    return table;
-}
-
-int wrapTexel(int i, int n, WrapMode mode) {
-    if (mode == WrapMode::ClampToEdge) return std::min(std::max(i, 0), n - 1);
-    if (mode == WrapMode::MirroredRepeat) {
-        int m = i % (2 * n);
-        if (m < 0) m += 2 * n;
-        return m < n ? m : 2 * n - 1 - m;
-    }
-    const int m = i % n;
-    return m < 0 ? m + n : m;
-}
-
-// Keeps a coordinate small without changing the texel it selects under the wrap mode.
-float foldCoord(float u, WrapMode mode) {
-    if (!std::isfinite(u)) return 0.0f;
-    if (mode == WrapMode::Repeat) return u - std::floor(u);
-    if (mode == WrapMode::MirroredRepeat) return u - 2.0f * std::floor(0.5f * u);
-    return std::min(std::max(u, -1.0f), 2.0f);
-}
-
-// Mip 0 of a texture, bilinear (nearest where the sampler asks), rgb sRGB-decoded and alpha linear: the path
-// tracer's sampling.
-struct TexelSource {
-    const uint8_t* texels = nullptr;
-    int width = 0, height = 0;
-    WrapMode wrapS = WrapMode::Repeat, wrapT = WrapMode::Repeat;
-    bool nearest = false;
-
-    bool valid() const { return texels != nullptr; }
-    glm::vec4 fetch(int x, int y) const {
-        const uint8_t* p = texels + (size_t(wrapTexel(y, height, wrapT)) * width + wrapTexel(x, width, wrapS)) * 4;
-        const auto& lut = srgbLut();
-        return glm::vec4(lut[p[0]], lut[p[1]], lut[p[2]], float(p[3]) * (1.0f / 255.0f));
-    }
-    glm::vec4 sample(glm::vec2 uv) const {
-        const float x = foldCoord(uv.x, wrapS) * float(width), y = foldCoord(uv.y, wrapT) * float(height);
-        if (nearest) return fetch(int(std::floor(x)), int(std::floor(y)));
-        const float fx = x - 0.5f, fy = y - 0.5f, x0 = std::floor(fx), y0 = std::floor(fy);
-        const float tx = fx - x0, ty = fy - y0;
-        const int ix = int(x0), iy = int(y0);
-        return (fetch(ix, iy) * (1.0f - tx) + fetch(ix + 1, iy) * tx) * (1.0f - ty) +
-               (fetch(ix, iy + 1) * (1.0f - tx) + fetch(ix + 1, iy + 1) * tx) * ty;
-    }
-};
-
-TexelSource texelSource(const Scene& scene, int textureIndex) {
-    TexelSource t;
-    if (textureIndex < 0 || textureIndex >= int(scene.textures.size())) return t;
-    const Texture& tex = scene.textures[textureIndex];
-    if (tex.image < 0 || tex.image >= int(scene.images.size())) return t;
-    const Image& img = scene.images[tex.image];
-    if (img.width <= 0 || img.height <= 0 || img.rgba8.size() < size_t(img.width) * img.height * 4) return t;
-    t.texels = img.rgba8.data();
-    t.width = img.width;
-    t.height = img.height;
-    t.wrapS = tex.wrapS;
-    t.wrapT = tex.wrapT;
-    t.nearest = tex.magFilter == FilterMode::Nearest;
-    return t;
-}
-
-struct Geom {
-    const MeshPart* part = nullptr;
-    const Material* material = nullptr;
-    TexelSource base, emissive;
-
-    glm::uvec3 triangle(unsigned prim) const {
-        const uint32_t* i = &part->indices[size_t(prim) * 3];
-        return {i[0], i[1], i[2]};
-    }
-    glm::vec3 faceNormal(const glm::uvec3& t) const {  // counter-clockwise front, not normalised
-        const glm::vec3& p0 = part->vertices[t.x].position;
-        return glm::cross(part->vertices[t.y].position - p0, part->vertices[t.z].position - p0);
-    }
-    glm::vec2 uv(const glm::uvec3& t, float u, float v) const {
-        return (1.0f - u - v) * part->vertices[t.x].uv + u * part->vertices[t.y].uv + v * part->vertices[t.z].uv;
-    }
-    bool cutOut(const glm::uvec3& t, float u, float v) const {
-        float a = material->baseColorFactor.w;
-        if (base.valid()) a *= base.sample(uv(t, u, v)).w;
-        return a < material->alphaCutoff;
-    }
-};
-
 // Every ray of the probes: only cut-out texels of masked materials are skipped (both faces are hit).
 void cutOutFilter(const RTCFilterFunctionNArguments* args) {
-    const auto* g = static_cast<const Geom*>(args->geometryUserPtr);
+    const auto* g = static_cast<const TracedSurface*>(args->geometryUserPtr);
     for (unsigned i = 0; i < args->N; ++i) {
         if (args->valid[i] != -1) continue;
         if (g->cutOut(g->triangle(RTCHitN_primID(args->hit, args->N, i)), RTCHitN_u(args->hit, args->N, i),
@@ -130,7 +40,7 @@ struct ProbeTracer::Impl {
     std::string error;
     RTCDevice device = nullptr;
     RTCScene scene = nullptr;
-    std::vector<Geom> geoms;  // by Embree geometry ID
+    std::vector<TracedSurface> geoms;  // by Embree geometry ID
 
     ~Impl() {
         if (scene) rtcReleaseScene(scene);
@@ -156,11 +66,7 @@ ProbeTracer::ProbeTracer(const Scene& scene) : impl_(std::make_unique<Impl>()) {
             if (idx >= part.vertices.size())
                 throw std::runtime_error("probes: mesh part '" + part.name + "' has index " + std::to_string(idx) +
                                          " past its " + std::to_string(part.vertices.size()) + " vertices");
-        Geom g;
-        g.part = &part;
-        g.material = &scene.material(part.material);
-        g.base = texelSource(scene, g.material->baseColorTexture);
-        g.emissive = texelSource(scene, g.material->emissiveTexture);
+        TracedSurface g(scene, part);
         RTCGeometry geom = rtcNewGeometry(m.device, RTC_GEOMETRY_TYPE_TRIANGLE);
         if (!geom) throw std::runtime_error("probes: cannot create an Embree geometry: " + m.error);
         auto* pos = static_cast<float*>(rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
@@ -214,7 +120,7 @@ ProbeHit ProbeTracer::intersect(const glm::vec3& o, const glm::vec3& d, float tn
     rtcIntersect1(impl_->scene, &ctx, &rh);
     ProbeHit h;
     if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return h;
-    const Geom& g = impl_->geoms[rh.hit.geomID];
+    const TracedSurface& g = impl_->geoms[rh.hit.geomID];
     const glm::uvec3 tri = g.triangle(rh.hit.primID);
     const float u = rh.hit.u, v = rh.hit.v, w = 1.0f - u - v;
     const Vertex &a = g.part->vertices[tri.x], &b = g.part->vertices[tri.y], &c = g.part->vertices[tri.z];
@@ -240,9 +146,9 @@ ProbeHit ProbeTracer::intersect(const glm::vec3& o, const glm::vec3& d, float tn
     const Material& mat = *g.material;
     const glm::vec2 uv = w * a.uv + u * b.uv + v * c.uv;
     h.albedo = glm::vec3(mat.baseColorFactor);
-    if (g.base.valid()) h.albedo *= glm::vec3(g.base.sample(uv));
+    if (g.baseTexture.valid()) h.albedo *= glm::vec3(g.baseTexture.sample(uv));
     h.emission = mat.emissiveFactor;
-    if (g.emissive.valid() && mat.emissive()) h.emission *= glm::vec3(g.emissive.sample(uv));
+    if (g.emissiveTexture.valid() && mat.emissive()) h.emission *= glm::vec3(g.emissiveTexture.sample(uv));
     return h;
 }
 

@@ -1,4 +1,5 @@
 #include "renderer/reference/path_tracer.h"
+#include "renderer/reference/traced_surface.h"
 
 #include "renderer/scene/scene_validation.h"
 
@@ -63,119 +64,9 @@ private:
     uint64_t state_, inc_;
 };
 
-// ---- textures -----------------------------------------------------------------------------------------------
-
-const std::array<float, 256>& srgbTable() {
-    static const std::array<float, 256> table = [] {
-        std::array<float, 256> t{};
-        for (int i = 0; i < 256; ++i) t[i] = srgbToLinear(float(i) / 255.0f);
-        return t;
-    }();
-    return table;
-}
-
-int wrapIndex(int i, int n, WrapMode mode) {
-    switch (mode) {
-        case WrapMode::ClampToEdge: return std::min(std::max(i, 0), n - 1);
-        case WrapMode::MirroredRepeat: {
-            int m = i % (2 * n);
-            if (m < 0) m += 2 * n;
-            return m < n ? m : 2 * n - 1 - m;
-        }
-        case WrapMode::Repeat:
-        default: {
-            int m = i % n;
-            return m < 0 ? m + n : m;
-        }
-    }
-}
-
-// Brings a coordinate into a small range with the same texel under the wrap mode (avoids int overflow).
-float reduceCoord(float u, WrapMode mode) {
-    if (!std::isfinite(u)) return 0.0f;
-    if (mode == WrapMode::Repeat) return u - std::floor(u);
-    if (mode == WrapMode::MirroredRepeat) return u - 2.0f * std::floor(0.5f * u);
-    return std::min(std::max(u, -1.0f), 2.0f);
-}
-
-// A texture bound to its image: bilinear (or nearest when the sampler asks for it) filtering of mip 0.
-struct TextureView {
-    const uint8_t* texels = nullptr;
-    int width = 0, height = 0;
-    WrapMode wrapS = WrapMode::Repeat, wrapT = WrapMode::Repeat;
-    bool nearest = false;
-
-    bool valid() const { return texels != nullptr; }
-
-    // rgb sRGB-decoded, alpha linear.
-    glm::vec4 sample(glm::vec2 uv) const {
-        const float x = reduceCoord(uv.x, wrapS) * float(width);
-        const float y = reduceCoord(uv.y, wrapT) * float(height);
-        if (nearest) return texel(int(std::floor(x)), int(std::floor(y)));
-        const float fx = x - 0.5f, fy = y - 0.5f;
-        const float x0f = std::floor(fx), y0f = std::floor(fy);
-        const float tx = fx - x0f, ty = fy - y0f;
-        const int x0 = int(x0f), y0 = int(y0f);
-        const glm::vec4 a = texel(x0, y0), b = texel(x0 + 1, y0), c = texel(x0, y0 + 1), d = texel(x0 + 1, y0 + 1);
-        return (a * (1.0f - tx) + b * tx) * (1.0f - ty) + (c * (1.0f - tx) + d * tx) * ty;
-    }
-    float sampleAlpha(glm::vec2 uv) const { return sample(uv).w; }
-
-private:
-    glm::vec4 texel(int x, int y) const {
-        x = wrapIndex(x, width, wrapS);
-        y = wrapIndex(y, height, wrapT);  // row 0 = top = v 0 (glTF)
-        const uint8_t* p = texels + (size_t(y) * width + x) * 4;
-        const auto& lut = srgbTable();
-        return glm::vec4(lut[p[0]], lut[p[1]], lut[p[2]], float(p[3]) * (1.0f / 255.0f));
-    }
-};
-
-TextureView makeTextureView(const Scene& scene, int textureIndex) {
-    TextureView v;
-    if (textureIndex < 0 || textureIndex >= int(scene.textures.size())) return v;
-    const Texture& t = scene.textures[textureIndex];
-    if (t.image < 0 || t.image >= int(scene.images.size())) return v;
-    const Image& img = scene.images[t.image];
-    if (img.width <= 0 || img.height <= 0 || img.rgba8.size() < size_t(img.width) * img.height * 4) return v;
-    v.texels = img.rgba8.data();
-    v.width = img.width;
-    v.height = img.height;
-    v.wrapS = t.wrapS;
-    v.wrapT = t.wrapT;
-    v.nearest = t.magFilter == FilterMode::Nearest;
-    return v;
-}
-
-// ---- geometry as the tracer sees it -------------------------------------------------------------------------
-
-struct GeomData {
-    const MeshPart* part = nullptr;
-    const Material* material = nullptr;
-    TextureView baseTexture, emissiveTexture;
-
-    glm::uvec3 triangle(unsigned prim) const {
-        const uint32_t* i = &part->indices[size_t(prim) * 3];
-        return glm::uvec3(i[0], i[1], i[2]);
-    }
-    // Counter-clockwise (glTF front) face normal, not normalised.
-    glm::vec3 faceNormal(const glm::uvec3& t) const {
-        const glm::vec3& p0 = part->vertices[t.x].position;
-        return glm::cross(part->vertices[t.y].position - p0, part->vertices[t.z].position - p0);
-    }
-    glm::vec2 uvAt(const glm::uvec3& t, float u, float v) const {
-        return (1.0f - u - v) * part->vertices[t.x].uv + u * part->vertices[t.y].uv + v * part->vertices[t.z].uv;
-    }
-    float alphaAt(const glm::uvec3& t, float u, float v) const {
-        float a = material->baseColorFactor.w;
-        if (baseTexture.valid()) a *= baseTexture.sampleAlpha(uvAt(t, u, v));
-        return a;
-    }
-};
-
 // Camera and bounce rays: back faces of single-sided materials and cut-out texels are not hit.
 void intersectFilter(const RTCFilterFunctionNArguments* args) {
-    const auto* g = static_cast<const GeomData*>(args->geometryUserPtr);
+    const auto* g = static_cast<const TracedSurface*>(args->geometryUserPtr);
     for (unsigned i = 0; i < args->N; ++i) {
         if (args->valid[i] != -1) continue;
         const glm::uvec3 tri = g->triangle(RTCHitN_primID(args->hit, args->N, i));
@@ -196,7 +87,7 @@ void intersectFilter(const RTCFilterFunctionNArguments* args) {
 
 // Shadow rays: both faces block; only cut-out texels let light through.
 void occludedFilter(const RTCFilterFunctionNArguments* args) {
-    const auto* g = static_cast<const GeomData*>(args->geometryUserPtr);
+    const auto* g = static_cast<const TracedSurface*>(args->geometryUserPtr);
     for (unsigned i = 0; i < args->N; ++i) {
         if (args->valid[i] != -1) continue;
         const glm::uvec3 tri = g->triangle(RTCHitN_primID(args->hit, args->N, i));
@@ -261,7 +152,7 @@ struct ReferenceTracer::Impl {
     std::string error;  // first Embree error (written by the device callback)
     std::unique_ptr<RTCDeviceTy, DeviceDeleter> device;
     std::unique_ptr<RTCSceneTy, SceneDeleter> rtcScene;
-    std::vector<GeomData> geoms;  // indexed by Embree geometry ID
+    std::vector<TracedSurface> geoms;  // indexed by Embree geometry ID
 
     explicit Impl(const Scene& s) : scene(s) {
         device.reset(rtcNewDevice(nullptr));
@@ -281,11 +172,7 @@ struct ReferenceTracer::Impl {
                     throw std::runtime_error("reference: mesh part '" + part.name + "' has index " +
                                              std::to_string(idx) + " past its " +
                                              std::to_string(part.vertices.size()) + " vertices");
-            GeomData g;
-            g.part = &part;
-            g.material = &scene.material(part.material);
-            g.baseTexture = makeTextureView(scene, g.material->baseColorTexture);
-            g.emissiveTexture = makeTextureView(scene, g.material->emissiveTexture);
+            TracedSurface g(scene, part);
 
             RTCGeometry geom = rtcNewGeometry(device.get(), RTC_GEOMETRY_TYPE_TRIANGLE);
             if (!geom) throw std::runtime_error("reference: cannot create an Embree geometry: " + error);
@@ -318,7 +205,7 @@ struct ReferenceTracer::Impl {
     }
 
     Surface shade(const RTCRayHit& rh, const glm::vec3& dir) const {
-        const GeomData& g = geoms[rh.hit.geomID];
+        const TracedSurface& g = geoms[rh.hit.geomID];
         const glm::uvec3 tri = g.triangle(rh.hit.primID);
         const float u = rh.hit.u, v = rh.hit.v, w = 1.0f - u - v;
         const Vertex &a = g.part->vertices[tri.x], &b = g.part->vertices[tri.y], &c = g.part->vertices[tri.z];
