@@ -18,7 +18,9 @@
 
 #include <gtest/gtest.h>
 
+#include <cstdio>
 #include <cstring>
+#include <sys/wait.h>
 #include <filesystem>
 #include <fstream>
 #include <sys/stat.h>
@@ -579,4 +581,39 @@ TEST_F(GLTest, CompressedAndQuantizedRenderLikePlain) {
     const Camera top = selectCamera(t, "top");
     const double rel = relativeMeanAbs(renderDirect(b, top, 96, 72), renderDirect(t, top, 96, 72));
     EXPECT_LT(rel, 1e-3);
+}
+
+// ---------------------------------------------------------------- the binary: an OBJ through render and buffers
+
+namespace {
+std::string runDeepgi(const std::string& args, int* status) {
+    const std::string cmd = std::string(DEEPGI_BINARY) + " " + args + " 2>&1";
+    FILE* p = popen(cmd.c_str(), "r");
+    std::string out;
+    if (!p) return out;
+    char buf[4096];
+    size_t n;
+    while ((n = fread(buf, 1, sizeof buf, p)) > 0) out.append(buf, n);
+    const int st = pclose(p);
+    *status = WIFEXITED(st) ? WEXITSTATUS(st) : -1;
+    return out;
+}
+}  // namespace
+
+TEST(ObjLoader, RenderAndBuffersCommandsOpenObj) {
+    TempDir d;
+    const std::string room = kTestAssets + "/obj_room/room.obj";
+    int status = -1;
+    std::string out = runDeepgi("render " + room + " --size 32x32 --frames 1 --out " + (d.path() / "r").string(), &status);
+    EXPECT_EQ(status, 0) << out;
+    EXPECT_TRUE(fs::exists(d.path() / "r" / "final.png")) << out;
+    // geometry: 32-byte vertices and 4-byte indices as loaded; textures: two 64x64 RGBA8 images with their full
+    // mip chains, 4 * (4096 + 1024 + 256 + 64 + 16 + 4 + 1) bytes each
+    const Scene s = loadScene(room);
+    size_t geometry = 0;
+    for (const auto& p : s.parts) geometry += p.vertices.size() * 32 + p.indices.size() * 4;
+    out = runDeepgi("buffers " + room + " --size 64x64", &status);
+    EXPECT_EQ(status, 0) << out;
+    EXPECT_NE(out.find("scene geometry: " + std::to_string(geometry) + " bytes"), std::string::npos) << out;
+    EXPECT_NE(out.find("scene textures: 43688 bytes"), std::string::npos) << out;
 }
