@@ -510,6 +510,44 @@ TEST(GltfExtensions, DracoMeshEqualsPlainWithinQuantization) {
     EXPECT_NE(e.find("Draco"), std::string::npos) << e;
 }
 
+// A file written by another producer: Debian's draco_transcoder (package draco) compresses plain.gltf with its
+// default quantization (11-bit positions, 8-bit normals, 10-bit texture coordinates) and writes its own JSON.
+TEST(GltfExtensions, DracoTranscoderFileEqualsPlain) {
+    if (!fs::exists("/usr/bin/draco_transcoder")) GTEST_SKIP() << "draco_transcoder not installed (package draco)";
+    TempDir d;
+    copyTexture(d.path());
+    const std::string cmd = "/usr/bin/draco_transcoder -i " + kTestAssets + "/quant/plain.gltf -o " +
+                            (d.path() / "transcoded.gltf").string() + " > /dev/null 2>&1";
+    ASSERT_EQ(std::system(cmd.c_str()), 0) << cmd;
+    const Scene plain = loadGltf(kTestAssets + "/quant/plain.gltf");
+    const Scene t = loadGltf((d.path() / "transcoded.gltf").string());
+    ASSERT_EQ(t.parts.size(), 1u);
+    EXPECT_EQ(t.triangleCount(), plain.triangleCount());
+    expectSameVertices(plain.parts[0], t.parts[0], 3.0f / 2047.0f, 0.02f, 4.0f / 1023.0f);
+    EXPECT_NEAR(triangleArea(t.parts[0]), triangleArea(plain.parts[0]), 0.01 * triangleArea(plain.parts[0]));
+}
+
+// Another producer of meshopt files: Debian's gltfpack (-cc) quantizes positions (KHR_mesh_quantization, 14 bits),
+// normals (8-bit octahedral filter) and texture coordinates (normalized 16 bits rescaled by a KHR_texture_transform),
+// reorders the vertices and compresses every view with EXT_meshopt_compression: all four code paths at once.
+TEST(GltfExtensions, GltfpackFileEqualsPlain) {
+    if (!fs::exists("/usr/bin/gltfpack")) GTEST_SKIP() << "gltfpack not installed (package gltfpack)";
+    TempDir d;
+    copyTexture(d.path());
+    const std::string cmd = "/usr/bin/gltfpack -cc -i " + kTestAssets + "/quant/plain.gltf -o " +
+                            (d.path() / "packed.gltf").string() + " > /dev/null 2>&1";
+    ASSERT_EQ(std::system(cmd.c_str()), 0) << cmd;
+    const json j = json::parse(readText(d.path() / "packed.gltf"));
+    ASSERT_TRUE(j.contains("extensionsRequired"));
+    EXPECT_NE(j["extensionsRequired"].dump().find("EXT_meshopt_compression"), std::string::npos);
+    const Scene plain = loadGltf(kTestAssets + "/quant/plain.gltf");
+    const Scene p = loadGltf((d.path() / "packed.gltf").string());
+    ASSERT_EQ(p.parts.size(), 1u);
+    EXPECT_EQ(p.triangleCount(), plain.triangleCount());
+    expectSameVertices(plain.parts[0], p.parts[0], 3.0f / 16383.0f, 0.02f, 1e-3f);
+    EXPECT_NEAR(triangleArea(p.parts[0]), triangleArea(plain.parts[0]), 1e-3 * triangleArea(plain.parts[0]));
+}
+
 TEST(GltfExtensions, MeshoptMeshEqualsPlain) {
     TempDir d;
     copyTexture(d.path());

@@ -175,7 +175,8 @@ std::string GltfReader::checkJson(const unsigned char* p, size_t n, bool binary)
                 reserveMemory(buf["byteLength"].get<uint64_t>(), where + " (byteLength)", true);
         }
     }
-    return rewritten ? doc.dump() : std::string();
+    // (invalid UTF-8 in a name is replaced, not a reason to refuse the file)
+    return rewritten ? doc.dump(-1, ' ', false, json::error_handler_t::replace) : std::string();
 }
 
 }  // namespace gltf
