@@ -655,3 +655,29 @@ TEST(ObjLoader, RenderAndBuffersCommandsOpenObj) {
     EXPECT_NE(out.find("scene geometry: " + std::to_string(geometry) + " bytes"), std::string::npos) << out;
     EXPECT_NE(out.find("scene textures: 43688 bytes"), std::string::npos) << out;
 }
+
+// A real public asset (DamagedHelmet, ../shared/scenes) compressed by gltfpack -cc (meshopt, quantization, texture
+// transforms) and by draco_transcoder (Draco, 11-bit positions): same triangles, same bounds within the
+// quantization step, and the same image (direct light, one camera for all) within 1 %, as for the small mesh
+// (measured 0.04 % and 0.12 %; a wrong normal or UV decoding moves it by tens of percent).
+TEST_F(GLTest, RealAssetCompressedByTheToolsRendersLikeTheOriginal) {
+    const fs::path helmet = fs::path(DEEPGI_SHARED_SCENES) / "DamagedHelmet/glTF-Binary/DamagedHelmet.glb";
+    if (!fs::exists(helmet) || !fs::exists("/usr/bin/gltfpack") || !fs::exists("/usr/bin/draco_transcoder"))
+        GTEST_SKIP() << "needs " << helmet << ", gltfpack and draco_transcoder";
+    TempDir d;
+    const fs::path gp = d.path() / "helmet_meshopt.glb", dt = d.path() / "helmet_draco.glb";
+    ASSERT_EQ(std::system(("/usr/bin/gltfpack -cc -i " + helmet.string() + " -o " + gp.string() + " > /dev/null 2>&1").c_str()), 0);
+    ASSERT_EQ(std::system(("/usr/bin/draco_transcoder -i " + helmet.string() + " -o " + dt.string() + " > /dev/null 2>&1").c_str()), 0);
+    const Scene original = loadGltf(helmet.string());
+    Camera cam = framingCamera(original.bounds);
+    const FloatImage ref = renderDirect(original, cam, 128, 128);
+    for (const fs::path& p : {gp, dt}) {
+        const Scene s = loadGltf(p.string());
+        EXPECT_EQ(s.triangleCount(), original.triangleCount()) << p;
+        EXPECT_LT(glm::length(s.bounds.lo - original.bounds.lo), 2e-3f * original.bounds.radius()) << p;
+        EXPECT_LT(glm::length(s.bounds.hi - original.bounds.hi), 2e-3f * original.bounds.radius()) << p;
+        const double rel = relativeMeanAbs(ref, renderDirect(s, cam, 128, 128));
+        std::printf("%s against the original: mean |difference| %.2f%% of the mean\n", p.filename().c_str(), 100 * rel);
+        EXPECT_LT(rel, 0.01) << p;
+    }
+}
