@@ -360,6 +360,24 @@ TEST(ObjLoader, MissingTextureWarnsOnceNamingTheFile) {
     EXPECT_EQ(s.triangleCount(), 3u);        // the undefined material's face uses the default material
 }
 
+TEST(ObjLoader, DissolveIsAMask) {
+    TempDir d;
+    writeText(d.path() / "d.obj", "mtllib d.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl half\nf 1 2 3\nusemtl gone\nf 1 3 2\n"
+                                  "usemtl tr\nf 2 3 1\nusemtl solid\nf 3 2 1\n");
+    writeText(d.path() / "d.mtl", "newmtl half\nKd 1 1 1\nd 0.25\nnewmtl gone\nd 0\nnewmtl tr\nTr 0.75\nnewmtl solid\nd 1\n");
+    const Scene s = loadScene((d.path() / "d.obj").string());
+    ASSERT_EQ(s.materials.size(), 4u);
+    EXPECT_EQ(s.materials[0].alphaMode, AlphaMode::Mask);  // d 0.25: below the 0.5 cutoff, cut out
+    EXPECT_FLOAT_EQ(s.materials[0].baseColorFactor.w, 0.25f);
+    EXPECT_EQ(s.materials[1].alphaMode, AlphaMode::Mask);
+    EXPECT_FLOAT_EQ(s.materials[1].baseColorFactor.w, 0.0f);
+    EXPECT_EQ(s.materials[2].alphaMode, AlphaMode::Mask);  // Tr is 1 - d
+    EXPECT_FLOAT_EQ(s.materials[2].baseColorFactor.w, 0.25f);
+    EXPECT_EQ(s.materials[3].alphaMode, AlphaMode::Opaque);
+    EXPECT_TRUE(hasWarning(s, "partial transparency"));     // d between 0 and 1 is not blended: said once
+    EXPECT_EQ(countWarnings(s, "partial transparency"), 1);
+}
+
 TEST(ObjLoader, FileRulesAsForGltf) {
     TempDir d;
     fs::create_directories(d.path() / "scene");
