@@ -175,7 +175,7 @@ void GltfReader::reserveMemory(uint64_t bytes, const std::string& what, bool kep
     budget_.reserve(bytes, what, kept);
 }
 
-std::vector<unsigned char> GltfReader::readMainFile() { return readSceneFile(path_, "glTF"); }
+std::vector<unsigned char> GltfReader::readMainFile() { return readSceneFile(path_, "a glTF"); }
 
 // Structural GLB checks done before tinygltf sees the data (tinygltf 2.7 lets the BIN chunk overrun by 8 bytes).
 void GltfReader::checkGlb(const std::vector<unsigned char>& d) const {

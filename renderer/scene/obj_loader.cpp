@@ -228,7 +228,7 @@ Material ObjReader::material(const tinyobj::material_t& om) {
 
 Scene ObjReader::run() {
     scene_.sourcePath = path_;
-    std::vector<unsigned char> data = readSceneFile(path_, "OBJ");
+    std::vector<unsigned char> data = readSceneFile(path_, "an OBJ");
     budget_.reserve(data.size(), "the file itself", true);
     const ObjCounts counts = scanObj(data);
     if (counts.corners > opt_.maxElements || counts.triangles * 3 > opt_.maxElements)

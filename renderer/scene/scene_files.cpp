@@ -42,7 +42,7 @@ std::vector<unsigned char> readSceneFile(const std::string& path, const std::str
         if (fs::is_symlink(fs::symlink_status(path, ec))) fail("file not found (a symlink to a missing file)");
         fail("file not found");
     }
-    if (fs::is_directory(path, ec)) fail("is a directory, not a " + kind + " file");
+    if (fs::is_directory(path, ec)) fail("is a directory, not " + kind + " file");
     const std::string nonRegular = nonRegularKind(path);  // opening a FIFO would block forever
     if (!nonRegular.empty()) fail("is " + nonRegular + ", not a regular file");
     std::ifstream f(path, std::ios::binary | std::ios::ate);

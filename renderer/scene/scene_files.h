@@ -19,7 +19,7 @@ namespace deepgi {
 std::string nonRegularKind(const std::filesystem::path& p);
 
 // Reads the scene file `path` whole; throws SceneLoadError("<path>: <problem>") when it is absent, a directory,
-// not a regular file, 4 GiB or larger, or unreadable. `kind` names the format in messages ("glTF", "OBJ").
+// not a regular file, 4 GiB or larger, or unreadable. `kind` names the format in messages ("a glTF", "an OBJ").
 std::vector<unsigned char> readSceneFile(const std::string& path, const std::string& kind);
 
 // The folder a scene file lives in, and the check that confines the files it names to it.
