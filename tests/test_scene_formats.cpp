@@ -360,6 +360,22 @@ TEST(ObjLoader, MissingTextureWarnsOnceNamingTheFile) {
     EXPECT_EQ(s.triangleCount(), 3u);        // the undefined material's face uses the default material
 }
 
+TEST(ObjLoader, TexturesRelativeToTheirLibrary) {
+    TempDir d;
+    fs::create_directories(d.path() / "mat" / "tex");
+    fs::copy_file(kTestAssets + "/obj_room/textures/checker.png", d.path() / "mat" / "tex" / "near_library.png");
+    fs::copy_file(kTestAssets + "/obj_room/textures/checker.png", d.path() / "near_obj.png");
+    writeText(d.path() / "m.obj", "mtllib mat/m.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl a\nf 1 2 3\nusemtl b\nf 1 3 2\n");
+    writeText(d.path() / "mat" / "m.mtl", "newmtl a\nmap_Kd tex\\near_library.png\nnewmtl b\nmap_Kd near_obj.png\n");
+    const Scene s = loadScene((d.path() / "m.obj").string());
+    ASSERT_EQ(s.materials.size(), 2u);
+    ASSERT_GE(s.materials[0].baseColorTexture, 0);
+    ASSERT_GE(s.materials[1].baseColorTexture, 0);
+    EXPECT_EQ(s.images[size_t(s.textures[size_t(s.materials[0].baseColorTexture)].image)].name, "mat/tex/near_library.png");
+    EXPECT_EQ(s.images[size_t(s.textures[size_t(s.materials[1].baseColorTexture)].image)].name, "near_obj.png");
+    EXPECT_TRUE(s.warnings.empty()) << s.warnings[0];
+}
+
 TEST(ObjLoader, DissolveIsAMask) {
     TempDir d;
     writeText(d.path() / "d.obj", "mtllib d.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl half\nf 1 2 3\nusemtl gone\nf 1 3 2\n"

@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <map>
 #include <sstream>
 #include <unordered_map>
@@ -94,9 +95,12 @@ public:
         }
         budget_.reserve(bytes.size() * 2, "material library '" + rel + "'", false);
         std::istringstream in(std::string(bytes.begin(), bytes.end()));
+        starts.emplace_back(materials->size(), std::filesystem::path(rel).parent_path().string());
         tinyobj::LoadMtl(matMap, materials, &in, warn, err);
         return true;
     }
+    // (first material index, folder of its library relative to the scene folder) per library read
+    std::vector<std::pair<size_t, std::string>> starts;
 
 private:
     const SceneFolder& folder_;
@@ -122,14 +126,24 @@ private:
 
     [[noreturn]] void fail(const std::string& problem) const { throw SceneLoadError(path_ + ": " + problem); }
     void warn(const std::string& w) { scene_.warnings.push_back(w); }
-    int image(const std::string& name, const std::string& user);
+    std::string mtlDir_;  // folder of the library of the material being read ("" = the OBJ's)
+    std::string texturePath(const std::string& name) const;
+    int image(const std::string& rel, const std::string& user);
     int texture(const std::string& key, int image, bool clamp);
     int maskedImage(int colour, int mask, const std::string& user);
     Material material(const tinyobj::material_t& m);
 };
 
-int ObjReader::image(const std::string& name, const std::string& user) {
+// A texture named in a library: relative to the library's folder when it is there, else to the OBJ's.
+std::string ObjReader::texturePath(const std::string& name) const {
     const std::string rel = normalisedPath(name);
+    if (mtlDir_.empty()) return rel;
+    const std::string nearLibrary = (std::filesystem::path(mtlDir_) / rel).lexically_normal().string();
+    std::error_code ec;
+    return std::filesystem::exists(std::filesystem::path(folder_.dir()) / nearLibrary, ec) ? nearLibrary : rel;
+}
+
+int ObjReader::image(const std::string& rel, const std::string& user) {
     auto it = images_.find(rel);
     if (it != images_.end()) return it->second;  // one warning per file, however many materials use it
     images_[rel] = -1;
@@ -189,21 +203,23 @@ Material ObjReader::material(const tinyobj::material_t& om) {
     m.baseColorFactor = glm::vec4(om.diffuse[0], om.diffuse[1], om.diffuse[2], om.dissolve);  // validateMaterial clamps
     m.emissiveFactor = glm::vec3(om.emission[0], om.emission[1], om.emission[2]);
     m.doubleSided = true;
-    const int colour = om.diffuse_texname.empty() ? -1 : image(om.diffuse_texname, user + " map_Kd");
-    const int mask = om.alpha_texname.empty() ? -1 : image(om.alpha_texname, user + " map_d");
+    const std::string colourPath = texturePath(om.diffuse_texname), maskPath = texturePath(om.alpha_texname);
+    const int colour = om.diffuse_texname.empty() ? -1 : image(colourPath, user + " map_Kd");
+    const int mask = om.alpha_texname.empty() ? -1 : image(maskPath, user + " map_d");
     const bool clamp = om.diffuse_texopt.clamp;
     if (mask >= 0) {
-        const std::string key = normalisedPath(om.diffuse_texname) + "|mask:" + normalisedPath(om.alpha_texname);
+        const std::string key = colourPath + "|mask:" + maskPath;
         auto it = textures_.find(key + (clamp ? "|clamp" : ""));
         m.baseColorTexture = it != textures_.end() ? it->second : texture(key, maskedImage(colour, mask, user), clamp);
         m.alphaMode = AlphaMode::Mask;
     } else if (colour >= 0) {
-        m.baseColorTexture = texture(normalisedPath(om.diffuse_texname), colour, clamp);
+        m.baseColorTexture = texture(colourPath, colour, clamp);
     }
     if (!om.emissive_texname.empty()) {
-        const int e = image(om.emissive_texname, user + " map_Ke");
+        const std::string emissivePath = texturePath(om.emissive_texname);
+        const int e = image(emissivePath, user + " map_Ke");
         if (e >= 0) {
-            m.emissiveTexture = texture(normalisedPath(om.emissive_texname), e, om.emissive_texopt.clamp);
+            m.emissiveTexture = texture(emissivePath, e, om.emissive_texopt.clamp);
             if (!m.emissive()) m.emissiveFactor = glm::vec3(1.0f);  // map_Ke without Ke: the map is the emission
         }
     }
@@ -275,7 +291,12 @@ Scene ObjReader::run() {
         }
     }
 
-    for (const auto& om : materials) scene_.materials.push_back(material(om));
+    for (size_t i = 0; i < materials.size(); ++i) {
+        mtlDir_.clear();
+        for (const auto& [first, dir] : mtl.starts)
+            if (first <= i) mtlDir_ = dir;
+        scene_.materials.push_back(material(materials[i]));
+    }
     for (const auto& [feature, names] : unsupported_) {
         std::string list;
         for (size_t i = 0; i < names.size() && i < 6; ++i) list += (i ? ", " : "") + names[i];
