@@ -3,8 +3,9 @@
 #include "app/options.h"
 #include "renderer/gl/headless_context.h"
 #include "renderer/renderer.h"
-#include "renderer/scene/gltf_loader.h"
+#include "renderer/scene/scene_loader.h"
 
+#include <algorithm>
 #include <cstdio>
 
 namespace deepgi {
@@ -14,14 +15,14 @@ CommandRegistrar registrar("buffers", "List every texture the renderer allocates
     auto scenePath = std::make_shared<std::string>();
     auto size = std::make_shared<std::string>("1280x720");
     auto settings = std::make_shared<SettingsOptions>();
-    sub.add_option("scene", *scenePath, "glTF/glb file (default: the atrium); the scene decides emission and shadow buffers");
+    sub.add_option("scene", *scenePath, "glTF/glb or OBJ file (default: the atrium); the scene decides emission and shadow buffers");
     sub.add_option("--size", *size, "Screen size WxH")->capture_default_str();
     settings->add(sub);
     return [scenePath, size, settings]() {
         int w = 0, h = 0;
         parseSize(*size, w, h);
         const Settings s = settings->build();
-        auto scene = std::make_shared<Scene>(loadGltf(scenePath->empty() ? defaultScenePath() : *scenePath, gltfLoadOptions(s)));
+        auto scene = std::make_shared<Scene>(loadScene(scenePath->empty() ? defaultScenePath() : *scenePath, gltfLoadOptions(s)));
         gl::HeadlessContext context;
         Renderer renderer;
         renderer.setScene(scene);
@@ -39,6 +40,21 @@ CommandRegistrar registrar("buffers", "List every texture the renderer allocates
         std::printf("scratch:   %d bits per pixel (content lives inside one pass: the blur's and temporal blend's ping-pong), %llu bytes\n",
                     r.scratchBitsPerPixel, (unsigned long long)r.scratchBytes);
         std::printf("total:     %llu bytes (%.1f MiB)\n", (unsigned long long)r.totalBytes, r.totalBytes / 1048576.0);
+        // The scene on the GPU as SceneGpu uploads it: one vertex and index buffer, one SRGB8_ALPHA8 texture with
+        // its full mip chain per Scene::textures entry.
+        uint64_t geometryBytes = 0, textureBytes = 0;
+        for (const auto& p : scene->parts) geometryBytes += p.vertices.size() * sizeof(Vertex) + p.indices.size() * sizeof(uint32_t);
+        for (const auto& t : scene->textures) {
+            if (t.image < 0 || t.image >= int(scene->images.size())) continue;
+            for (int w = scene->images[size_t(t.image)].width, h = scene->images[size_t(t.image)].height;; w = std::max(1, w / 2), h = std::max(1, h / 2)) {
+                textureBytes += uint64_t(w) * uint64_t(h) * 4;
+                if (w == 1 && h == 1) break;
+            }
+        }
+        std::printf("scene geometry: %llu bytes (%.1f MiB), %zu triangles\n", (unsigned long long)geometryBytes,
+                    geometryBytes / 1048576.0, scene->triangleCount());
+        std::printf("scene textures: %llu bytes (%.1f MiB), %zu textures with mipmaps\n", (unsigned long long)textureBytes,
+                    textureBytes / 1048576.0, scene->textures.size());
         std::printf("scene load peak: %llu bytes (%.1f MiB) of a load.memory_budget of %d MiB\n",
                     (unsigned long long)scene->loadPeakBytes, scene->loadPeakBytes / 1048576.0, s.loadMemoryBudget);
         return 0;

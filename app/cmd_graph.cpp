@@ -4,7 +4,7 @@
 #include "app/options.h"
 #include "renderer/gl/headless_context.h"
 #include "renderer/renderer.h"
-#include "renderer/scene/gltf_loader.h"
+#include "renderer/scene/scene_loader.h"
 
 #include <cstdio>
 #include <fstream>
@@ -81,7 +81,7 @@ CommandRegistrar registrar("graph", "Print the pass pipeline a scene and setting
     auto size = std::make_shared<std::string>("1280x720");
     auto dot = std::make_shared<std::string>();
     auto settings = std::make_shared<SettingsOptions>();
-    sub.add_option("scene", *scenePath, "glTF/glb file (default: the atrium); the scene decides emission and shadow buffers");
+    sub.add_option("scene", *scenePath, "glTF/glb or OBJ file (default: the atrium); the scene decides emission and shadow buffers");
     sub.add_option("--size", *size, "Screen size WxH")->capture_default_str();
     sub.add_option("--dot", *dot, "Also write the graph as a Graphviz file (render with: dot -Tsvg FILE -o graph.svg)");
     settings->add(sub);
@@ -90,7 +90,7 @@ CommandRegistrar registrar("graph", "Print the pass pipeline a scene and setting
         parseSize(*size, w, h);
         const Settings s = settings->build();
         const std::string path = scenePath->empty() ? defaultScenePath() : *scenePath;
-        auto scene = std::make_shared<Scene>(loadGltf(path));
+        auto scene = std::make_shared<Scene>(loadScene(path));
         gl::HeadlessContext context;
         Renderer renderer;
         renderer.setScene(scene);

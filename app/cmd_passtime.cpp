@@ -8,7 +8,7 @@
 #include "renderer/core/util.h"
 #include "renderer/gl/headless_context.h"
 #include "renderer/renderer.h"
-#include "renderer/scene/gltf_loader.h"
+#include "renderer/scene/scene_loader.h"
 
 #include <algorithm>
 #include <chrono>
@@ -30,7 +30,7 @@ int runPassTime(const PassTimeArgs& a) {
     int w, h;
     parseSize(a.size, w, h);
     const Settings s = a.settings.build();
-    auto scene = std::make_shared<Scene>(loadGltf(a.scene.empty() ? defaultScenePath() : a.scene, gltfLoadOptions(s)));
+    auto scene = std::make_shared<Scene>(loadScene(a.scene.empty() ? defaultScenePath() : a.scene, gltfLoadOptions(s)));
     const Camera cam = selectCamera(*scene, a.scene.empty() ? a.camera : a.camera);
     gl::HeadlessContext context;
     std::vector<std::string> dirs = {a.shadersA, a.shadersB};
@@ -82,7 +82,7 @@ int runPassTime(const PassTimeArgs& a) {
 
 CommandRegistrar registrar("passtime", "Time passes of two shader folders side by side (A/B) in one process", 36, [](CLI::App& sub) {
     auto a = std::make_shared<PassTimeArgs>();
-    sub.add_option("scene", a->scene, "glTF scene (default: the atrium)");
+    sub.add_option("scene", a->scene, "glTF/glb or OBJ scene (default: the atrium)");
     sub.add_option("--camera", a->camera, "Camera name")->capture_default_str();
     sub.add_option("--size", a->size, "Image size WxH")->capture_default_str();
     sub.add_option("--frames", a->frames, "Frames rendered first (convergence)")->capture_default_str()->check(CLI::Range(1, 10000));

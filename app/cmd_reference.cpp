@@ -5,7 +5,7 @@
 #include "renderer/core/image_io.h"
 #include "renderer/core/settings.h"
 #include "renderer/reference/path_tracer.h"
-#include "renderer/scene/gltf_loader.h"
+#include "renderer/scene/scene_loader.h"
 
 #include <nlohmann/json.hpp>
 
@@ -53,7 +53,7 @@ int runReference(const ReferenceArgs& a) {
     if (!a.preset.empty()) applyPreset(settings, a.preset);
     for (const std::string& kv : a.assignments) applyAssignment(settings, kv);
 
-    Scene scene = loadGltf(a.scene, gltfLoadOptions(settings));
+    Scene scene = loadScene(a.scene, gltfLoadOptions(settings));
     if (!scene.bounds.valid()) scene.computeBounds();
     for (const std::string& w : scene.warnings) std::fprintf(stderr, "deepgi: warning: %s\n", w.c_str());
     const Camera camera = selectCamera(scene, a.camera, a.cameraFile);
@@ -110,7 +110,7 @@ const CommandRegistrar kReference(
     "reference", "Path-traced ground truth (Embree): final/direct/indirect EXR, PNG and noise report", 40,
     [](CLI::App& sub) -> std::function<int()> {
         auto a = std::make_shared<ReferenceArgs>();
-        sub.add_option("scene", a->scene, "glTF scene (.gltf/.glb)")->capture_default_str();
+        sub.add_option("scene", a->scene, "glTF (.gltf/.glb) or OBJ scene")->capture_default_str();
         sub.add_option("--camera", a->camera, "Camera name (default: the scene's first, or a framing camera)");
         sub.add_option("--camera-file", a->cameraFile, "Camera from a JSON file (a viewer capture's camera.json); wins over --camera");
         sub.add_option("--size", a->size, "Image size WxH")->capture_default_str();

@@ -12,7 +12,7 @@ CommandRegistrar registrar("render", "Render a glTF scene headless (OSMesa) to a
     auto job = std::make_shared<RenderJob>();
     auto size = std::make_shared<std::string>("640x360");
     auto settings = std::make_shared<SettingsOptions>();
-    sub.add_option("scene", job->scenePath, "glTF/glb file (default: the atrium in assets/)");
+    sub.add_option("scene", job->scenePath, "glTF/glb or OBJ file (default: the atrium in assets/)");
     sub.add_option("--size", *size, "Image size WxH")->capture_default_str();
     sub.add_option("--frames", job->frames, "Frames to render (temporal passes converge over them)")->capture_default_str()->check(CLI::Range(1, 100000));
     sub.add_option("--camera", job->camera, "glTF camera name (default: the scene's first, else a framing camera)");

@@ -14,7 +14,7 @@ CommandRegistrar registrar("view", "Interactive viewer: Blender-style navigation
     auto opt = std::make_shared<ViewerOptions>();
     auto size = std::make_shared<std::string>();
     auto settings = std::make_shared<SettingsOptions>();
-    sub.add_option("scene", opt->scenePath, "glTF/glb file (default: the atrium in assets/)");
+    sub.add_option("scene", opt->scenePath, "glTF/glb or OBJ file (default: the atrium in assets/)");
     sub.add_option("--size", *size, "Window size WxH (default: the last one, else 1280x720)");
     sub.add_option("--camera", opt->camera, "Start from this glTF camera");
     sub.add_option("--camera-file", opt->cameraFile, "Start from the camera in a JSON file (a capture's camera.json)");

@@ -9,7 +9,7 @@
 #include <imgui_impl_opengl3.h>
 
 #include "renderer/core/image_io.h"
-#include "renderer/scene/gltf_loader.h"
+#include "renderer/scene/scene_loader.h"
 
 #include <algorithm>
 #include <chrono>
@@ -124,7 +124,7 @@ bool Viewer::init() {
     views_[0] = std::make_unique<BufferViewPass>();
     views_[1] = std::make_unique<BufferViewPass>();
 
-    scene_ = std::make_shared<Scene>(loadGltf(opt_.scenePath));
+    scene_ = std::make_shared<Scene>(loadScene(opt_.scenePath));
     for (const auto& w : scene_->warnings) std::fprintf(stderr, "deepgi view: warning: %s\n", w.c_str());
     renderer_->setScene(scene_);
     for (const auto& c : scene_->cameras) view_.cameraNames.push_back(c.name);

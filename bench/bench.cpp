@@ -7,7 +7,7 @@
 #include "renderer/gl/offscreen_context.h"
 #include "renderer/reference/path_tracer.h"
 #include "renderer/renderer.h"
-#include "renderer/scene/gltf_loader.h"
+#include "renderer/scene/scene_loader.h"
 
 #include <algorithm>
 #include <chrono>
@@ -172,14 +172,16 @@ BenchResult runBench(const BenchOptions& o) {
     for (const BenchView& v : o.views) {
         ViewData vd;
         vd.view = v;
-        auto scene = std::make_shared<Scene>(loadGltf(v.scenePath));
+        auto scene = std::make_shared<Scene>(loadScene(v.scenePath));
         if (!scene->bounds.valid()) scene->computeBounds();
         const Camera cam = selectCamera(*scene, v.camera, v.cameraFile);
+        Settings viewBase = o.base;
+        for (const auto& a : v.assignments) applyAssignment(viewBase, a);
         const std::string sceneName = fs::path(v.scenePath).stem().string();
         const std::string camName = cam.name.empty() ? "default" : cam.name;
         vd.label = sceneName + "/" + camName;
         log(o.quiet, "bench: %s: reference\n", vd.label);
-        vd.ref = cachedReference(*scene, cam, o.base, o.width, o.height, o.spp, o.bounces, cacheDir, o.quiet);
+        vd.ref = cachedReference(*scene, cam, viewBase, o.width, o.height, o.spp, o.bounces, cacheDir, o.quiet);
         log(o.quiet, "bench: reference %s\n", vd.ref.path + (vd.ref.cacheHit ? " (cached)" : " (rendered)"));
 
         // The camera path: a sideways dolly; references at its middle and end.
@@ -188,7 +190,7 @@ BenchResult runBench(const BenchOptions& o) {
         if (o.pathFrames > 0)
             for (int k : {std::max(1, o.pathFrames / 2), o.pathFrames})
                 if (!pathRefs.count(k))
-                    pathRefs[k] = cachedReference(*scene, dolly(cam, step * float(k)), o.base, o.width, o.height, o.pathSpp,
+                    pathRefs[k] = cachedReference(*scene, dolly(cam, step * float(k)), viewBase, o.width, o.height, o.pathSpp,
                                                   o.bounces, cacheDir, o.quiet).final;
 
         Renderer r(ropt);
@@ -199,7 +201,7 @@ BenchResult runBench(const BenchOptions& o) {
 
         std::vector<std::pair<Settings, std::string>> done;  // settings already measured -> config name
         for (const BenchConfig& cfg : configs) {
-            const Settings s = configSettings(o.base, cfg);
+            const Settings s = configSettings(viewBase, cfg);
             BenchRow row;
             row.scene = sceneName;
             row.camera = camName;
@@ -281,13 +283,14 @@ BenchResult runBench(const BenchOptions& o) {
     // The whole frame of the first view at the whole-frame size, balanced preset.
     std::vector<std::pair<std::string, double>> wholePasses;
     if (o.wholeFrameWidth > 0 && o.wholeFrameHeight > 0) {
-        auto scene = std::make_shared<Scene>(loadGltf(o.views[0].scenePath));
+        auto scene = std::make_shared<Scene>(loadScene(o.views[0].scenePath));
         Renderer r(ropt);
         r.setScene(scene);
         r.resize(o.wholeFrameWidth, o.wholeFrameHeight);
         r.setCamera(selectCamera(*scene, o.views[0].camera, o.views[0].cameraFile));
         Settings s = o.base;
         applyPreset(s, "balanced");
+        for (const auto& a : o.views[0].assignments) applyAssignment(s, a);
         std::vector<double> totals;
         std::map<std::string, std::vector<double>> perPass;
         const int timed = std::max(1, o.wholeFrameFrames / 2);

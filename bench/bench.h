@@ -35,6 +35,7 @@ FloatImage finalRgb(const Renderer& r);
 struct BenchView {
     std::string scenePath, camera;
     std::string cameraFile;  // a camera.json (e.g. a viewer capture); wins over camera
+    std::vector<std::string> assignments;  // key=value settings of this view over BenchOptions::base (an OBJ's sun)
 };
 
 struct BenchOptions {

@@ -7,7 +7,7 @@
 #include "renderer/gl/offscreen_context.h"
 #include "renderer/reference/path_tracer.h"
 #include "renderer/renderer.h"
-#include "renderer/scene/gltf_loader.h"
+#include "renderer/scene/scene_loader.h"
 
 #include <nlohmann/json.hpp>
 
@@ -260,7 +260,7 @@ HardResult runHardSuite(const HardOptions& o) {
             const std::string dir = sceneDirName(view.scene, scale);
             const fs::path file = assets / "hard" / dir / (dir + ".gltf");
             if (!fs::exists(file)) throw std::runtime_error("bench: " + file.string() + " not found (run /usr/bin/python3 tools/gen_scenes.py)");
-            auto scene = std::make_shared<Scene>(loadGltf(file.string()));
+            auto scene = std::make_shared<Scene>(loadScene(file.string()));
             if (!scene->bounds.valid()) scene->computeBounds();
             return std::make_pair(scene, file);
         };

@@ -591,9 +591,9 @@ TEST_F(GltfLoader, CamerasNamedAndPlaced) {
 
 TEST_F(GltfLoader, RequiredUnsupportedExtensionIsAnError) {
     Builder b;
-    b.j["extensionsUsed"] = {"KHR_draco_mesh_compression"};
-    b.j["extensionsRequired"] = {"KHR_draco_mesh_compression"};
-    expectError(b.writeGltf(dir, "draco.gltf"), "KHR_draco_mesh_compression");
+    b.j["extensionsUsed"] = {"KHR_materials_pbrSpecularGlossiness"};
+    b.j["extensionsRequired"] = {"KHR_materials_pbrSpecularGlossiness"};
+    expectError(b.writeGltf(dir, "specgloss.gltf"), "required extension 'KHR_materials_pbrSpecularGlossiness'");
     Builder ok;  // optional unknown extension: loads, with a warning
     ok.j["extensionsUsed"] = {"EXT_something"};
     Scene sc = loadGltf(ok.writeGltf(dir, "optional.gltf").string());
@@ -1034,15 +1034,16 @@ TEST_F(GltfLoader, TextureLargerThanTheLimitIsDownscaledWithAWarning) {
 
 // unclear messages: each names the element and what is wrong with it, in one readable line.
 TEST_F(GltfLoader, MessagesNameTheProblem) {
-    // Draco: the primitive, not "accessor[0] invalid bufferView"
+    // Draco data that is not Draco: the primitive and Draco, not "accessor[0] invalid bufferView"
     Builder draco = triangleScene();
     draco.j["accessors"].push_back({{"componentType", kUShort}, {"type", "SCALAR"}, {"count", 3}});
     draco.j["meshes"][0]["primitives"][0]["indices"] = 1;
-    draco.j["meshes"][0]["primitives"][0]["extensions"] = {{"KHR_draco_mesh_compression", {{"bufferView", 0}}}};
+    draco.j["meshes"][0]["primitives"][0]["extensions"] = {
+        {"KHR_draco_mesh_compression", {{"bufferView", 0}, {"attributes", {{"POSITION", 0}}}}}};
     draco.j["extensionsUsed"] = {"KHR_draco_mesh_compression"};
-    expectError(draco.writeGltf(dir, "draco.gltf"), "Draco-compressed");
+    expectError(draco.writeGltf(dir, "draco.gltf"), "(KHR_draco_mesh_compression): Draco decoding failed");
     draco.j["extensionsRequired"] = {"KHR_draco_mesh_compression"};
-    expectError(draco.writeGltf(dir, "draco_req.gltf"), "required extension 'KHR_draco_mesh_compression'");
+    expectError(draco.writeGltf(dir, "draco_req.gltf"), "Draco decoding failed");
     // a data URI whose byteLength is wrong: says byteLength, does not quote the payload
     Builder big;
     std::vector<float> pos(300000, 0.0f);

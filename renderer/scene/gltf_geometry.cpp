@@ -172,7 +172,8 @@ std::vector<float> GltfReader::readFloats(int index, int expectedType, std::init
     if (std::find(allowed.begin(), allowed.end(), acc.componentType) == allowed.end() ||
         (requireNormalizedInts && acc.componentType != kCompFloat && !acc.normalized))
         fail(what + ": accessor " + std::to_string(index) + " has unsupported component type " +
-             componentTypeName(acc.componentType) + (acc.normalized ? " (normalized)" : ""));
+             componentTypeName(acc.componentType) + (acc.normalized ? " (normalized)" : "") +
+             (quantized_ || acc.componentType == kCompFloat ? "" : " (integer attributes need KHR_mesh_quantization in extensionsUsed)"));
     if (countTowardsLimit) reserveElements(acc.count, what);
     else if (acc.count > opt_.maxElements) reserveElements(acc.count, what);  // fails
     const size_t csize = componentSize(acc.componentType);
@@ -233,7 +234,7 @@ uint64_t GltfReader::primitiveBytesBound(const tinygltf::Primitive& prim, int mo
     const double ni = (prim.indices >= 0 && size_t(prim.indices) < model_.accessors.size())
                           ? double(model_.accessors[size_t(prim.indices)].count) : nv;
     const double corners = mode == TINYGLTF_MODE_TRIANGLES ? ni : 3.0 * std::max(ni - 2.0, 0.0);
-    const double bytes = nv * 12.0 + countOf("NORMAL") * 12.0 + countOf("TEXCOORD_0") * 8.0 + ni * 4.0 +
+    const double bytes = nv * 12.0 + countOf("NORMAL") * 12.0 + std::max(countOf("TEXCOORD_0"), countOf("TEXCOORD_1")) * 8.0 + ni * 4.0 +
                          corners * 4.0 + nv * (double(sizeof(Vertex)) + 1.0 + 8.0) +
                          corners * (double(sizeof(Vertex)) + 4.0);
     return bytes >= 1.8e19 ? UINT64_MAX : uint64_t(bytes);
@@ -274,27 +275,40 @@ void GltfReader::addMesh(int meshIndex, const glm::mat4& world) {
         // is "all zeros" has a count bounded by no file size; a mesh placed 10000 times is copied 10000 times).
         // Accessors inside the file are range-checked first: their error ("out of range of buffer view") is the
         // more precise one, and only data-less accessors can claim more than the file holds.
+        // The UV set the material's textures read (KHR_texture_transform may pick another), transformed at load.
+        const UvSet uvSet = prim.material >= 0 && size_t(prim.material) < materialUv_.size()
+                                ? materialUv_[size_t(prim.material)] : UvSet{};
+        const std::string uvName = "TEXCOORD_" + std::to_string(uvSet.texCoord);
         for (const auto& [attr, index] : prim.attributes)
-            if (attr == "POSITION" || attr == "NORMAL" || attr == "TEXCOORD_0") checkAccessorFits(index, what + " " + attr);
+            if (attr == "POSITION" || attr == "NORMAL" || attr == uvName) checkAccessorFits(index, what + " " + attr);
         if (prim.indices >= 0) checkAccessorFits(prim.indices, what + " indices");
         const uint64_t transientBytes = primitiveBytesBound(prim, mode);
         const std::string instance = what + " (instance " + std::to_string(meshInstances_[size_t(meshIndex)] + 1) +
                                      " of mesh " + std::to_string(meshIndex) + ")";
         reserveMemory(transientBytes, instance, false);
-        std::vector<float> pos = readFloats(posIt->second, TINYGLTF_TYPE_VEC3, {kCompFloat}, false, true,
-                                      what + " POSITION");
+        // KHR_mesh_quantization: integer positions (the node transform dequantizes), normalized integer normals,
+        // integer texture coordinates normalized or not (a KHR_texture_transform usually rescales them).
+        const std::initializer_list<int> quantTypes = {kCompFloat, kCompByte, kCompUByte, kCompShort, kCompUShort};
+        const std::initializer_list<int> floatOnly = {kCompFloat};
+        const std::initializer_list<int> normalTypes = {kCompFloat, kCompByte, kCompShort};
+        const std::initializer_list<int> uvTypes = {kCompFloat, kCompUByte, kCompUShort};
+        std::vector<float> pos = readFloats(posIt->second, TINYGLTF_TYPE_VEC3, quantized_ ? quantTypes : floatOnly,
+                                            false, true, what + " POSITION");
         const size_t nv = pos.size() / 3;
         std::vector<float> nrm, uv;
         auto nIt = prim.attributes.find("NORMAL");
         if (nIt != prim.attributes.end()) {
-            nrm = readFloats(nIt->second, TINYGLTF_TYPE_VEC3, {kCompFloat}, false, false, what + " NORMAL");
+            nrm = readFloats(nIt->second, TINYGLTF_TYPE_VEC3, quantized_ ? normalTypes : floatOnly, true, false,
+                             what + " NORMAL");
             if (nrm.size() != pos.size()) fail(what + ": NORMAL count differs from POSITION count");
         }
-        auto tIt = prim.attributes.find("TEXCOORD_0");
+        auto tIt = prim.attributes.find(uvName);
         if (tIt != prim.attributes.end()) {
-            uv = readFloats(tIt->second, TINYGLTF_TYPE_VEC2, {kCompFloat, kCompUByte, kCompUShort}, true,
-                            false, what + " TEXCOORD_0");
-            if (uv.size() / 2 != nv) fail(what + ": TEXCOORD_0 count differs from POSITION count");
+            uv = readFloats(tIt->second, TINYGLTF_TYPE_VEC2, quantized_ ? quantTypes : uvTypes, !quantized_,
+                            false, what + " " + uvName);
+            if (uv.size() / 2 != nv) fail(what + ": " + uvName + " count differs from POSITION count");
+        } else if (uvSet.texCoord != 0) {
+            warn(what + ": its material's textures read " + uvName + ", which the primitive lacks; using (0, 0)");
         }
 
         std::vector<uint32_t> idx;
@@ -341,7 +355,7 @@ void GltfReader::addMesh(int meshIndex, const glm::mat4& world) {
         for (size_t i = 0; i < nv; ++i) {
             Vertex& v = verts[i];
             v.position = glm::vec3(world * glm::vec4(pos[i * 3], pos[i * 3 + 1], pos[i * 3 + 2], 1.0f));
-            v.uv = uv.empty() ? glm::vec2(0.0f) : glm::vec2(uv[i * 2], uv[i * 2 + 1]);
+            v.uv = uv.empty() ? glm::vec2(0.0f) : glm::vec2(uvSet.transform * glm::vec3(uv[i * 2], uv[i * 2 + 1], 1.0f));
             if (!finite3(glm::vec3(v.uv, 0.0f))) v.uv = glm::vec2(0.0f);
             if (nrm.empty()) {
                 badNormal[i] = 1;

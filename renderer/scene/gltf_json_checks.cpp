@@ -81,15 +81,15 @@ int64_t base64DecodedSize(const std::string& payload) {
 
 }  // namespace
 
-void GltfReader::checkJson(const unsigned char* p, size_t n, bool binary) {
-    const json doc = json::parse(p, p + n, nullptr, /*allow_exceptions=*/false);
-    if (doc.is_discarded() || !doc.is_object()) return;  // invalid JSON: tinygltf's message says where
+std::string GltfReader::checkJson(const unsigned char* p, size_t n, bool binary) {
+    json doc = json::parse(p, p + n, nullptr, /*allow_exceptions=*/false);
+    if (doc.is_discarded() || !doc.is_object()) return "";  // invalid JSON: tinygltf's message says where
+    bool rewritten = false;  // the JSON tinygltf gets differs (Draco indices, meshopt fallback buffers)
 
-    // Required extensions first: a Draco file would otherwise fail inside tinygltf on its missing buffer views.
-    static const std::set<std::string> supported = {"KHR_lights_punctual", "KHR_materials_emissive_strength"};
+    // Required extensions first, before tinygltf fails on what it does not know with messages naming neither.
     if (doc.contains("extensionsRequired") && doc["extensionsRequired"].is_array())
         for (const auto& e : doc["extensionsRequired"])
-            if (e.is_string() && !supported.count(e.get<std::string>()))
+            if (e.is_string() && !supportedExtensions().count(e.get<std::string>()))
                 fail("required extension '" + printable(e.get<std::string>()) + "' is not supported");
 
     std::string problem;
@@ -106,8 +106,16 @@ void GltfReader::checkJson(const unsigned char* p, size_t n, bool binary) {
                 const std::string where = "meshes[" + std::to_string(m) + "].primitives[" + std::to_string(i) + "]";
                 if (!prims[i].is_object()) continue;
                 if (prims[i].contains("extensions") && prims[i]["extensions"].is_object() &&
-                    prims[i]["extensions"].contains("KHR_draco_mesh_compression"))
-                    fail(where + " is Draco-compressed (KHR_draco_mesh_compression), which is not supported");
+                    prims[i]["extensions"].contains("KHR_draco_mesh_compression")) {
+                    // tinygltf 2.7 refuses the index accessor of a Draco primitive (it has no bufferView): it is
+                    // kept here and put back once decodeDraco() has given it one.
+                    if (prims[i].contains("indices") && prims[i]["indices"].is_number_integer()) {
+                        dracoIndices_[{int(m), int(i)}] = prims[i]["indices"].get<int>();
+                        doc["meshes"][m]["primitives"][i].erase("indices");
+                        rewritten = true;
+                    }
+                    continue;
+                }
                 // tinygltf refuses an index accessor without bufferView (valid glTF: all zeros) as "invalid bufferView"
                 if (prims[i].contains("indices") && prims[i]["indices"].is_number_integer() &&
                     doc.contains("accessors") && doc["accessors"].is_array()) {
@@ -128,6 +136,18 @@ void GltfReader::checkJson(const unsigned char* p, size_t n, bool binary) {
             const auto& buf = buffers[b];
             if (!buf.is_object()) continue;
             const std::string where = "buffer " + std::to_string(b);
+            const bool meshoptFallback = buf.contains("extensions") && buf["extensions"].is_object() &&
+                                         buf["extensions"].contains("EXT_meshopt_compression") &&
+                                         buf["extensions"]["EXT_meshopt_compression"].is_object() &&
+                                         buf["extensions"]["EXT_meshopt_compression"].value("fallback", false);
+            if (meshoptFallback && !buf.contains("uri")) {
+                // A placeholder with no data (EXT_meshopt_compression): every view into it is decoded by
+                // decodeMeshopt() into a buffer of its own. tinygltf gets one byte instead of a missing URI.
+                doc["buffers"][b] = {{"byteLength", 1}, {"uri", "data:application/octet-stream;base64,AA=="}};
+                meshoptFallbacks_.insert(int(b));
+                rewritten = true;
+                continue;
+            }
             if (!buf.contains("uri")) {
                 if (!binary || b > 0)
                     fail(where + " has no uri (only the first buffer of a .glb may omit it: it is the BIN chunk)");
@@ -155,6 +175,8 @@ void GltfReader::checkJson(const unsigned char* p, size_t n, bool binary) {
                 reserveMemory(buf["byteLength"].get<uint64_t>(), where + " (byteLength)", true);
         }
     }
+    // (invalid UTF-8 in a name is replaced, not a reason to refuse the file)
+    return rewritten ? doc.dump(-1, ' ', false, json::error_handler_t::replace) : std::string();
 }
 
 }  // namespace gltf

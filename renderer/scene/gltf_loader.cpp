@@ -14,6 +14,7 @@
 #include <glm/gtc/quaternion.hpp>
 
 #include "renderer/core/settings.h"
+#include "renderer/scene/scene_files.h"
 #include "renderer/scene/scene_validation.h"
 
 #include <algorithm>
@@ -52,58 +53,24 @@ std::vector<std::string> splitLines(const std::string& s) {
     return out;
 }
 
-// ---- file system callbacks: confine external URIs to the scene's folder ----
+// ---- file system callbacks: confine external URIs to the scene's folder (scene_files.h) ----
 struct FsContext {
-    std::string baseDir;        // absolute, no trailing '/' (as tinygltf joins it with the URI)
-    fs::path baseCanonical;     // baseDir with every symlink resolved
-    std::map<std::string, std::string> problems;  // URI (relative to baseDir) -> why it was not read
+    explicit FsContext(const std::string& scenePath) : folder(scenePath) {}
+    SceneFolder folder;
+    std::map<std::string, std::string> problems;  // URI (relative to the folder) -> why it was not read
     void record(const std::string& rel, const std::string& why) { problems.emplace(rel, why); }
 };
 
-// "FIFO (named pipe)" etc. for anything that is not a regular file; "" for a regular file or one that is absent.
-std::string nonRegularKind(const fs::path& p) {
-    std::error_code ec;
-    const fs::file_status st = fs::status(p, ec);  // follows symlinks
-    if (ec || !fs::exists(st)) return "";
-    switch (st.type()) {
-        case fs::file_type::regular: return "";
-        case fs::file_type::directory: return "a directory";
-        case fs::file_type::fifo: return "a FIFO (named pipe)";
-        case fs::file_type::character: return "a character device";
-        case fs::file_type::block: return "a block device";
-        case fs::file_type::socket: return "a socket";
-        default: return "not a regular file";
-    }
-}
-
-// Returns true when `full` (as joined by tinygltf: baseDir + "/" + uri) names a file inside baseDir, both as
-// written (no absolute path, no "..") and after every symlink on the way is resolved.
+// Returns true when `full` (as joined by tinygltf: folder + "/" + uri) may be read: inside the folder as written
+// and after symlinks are resolved, and a regular file (or absent). Records why not.
 bool insideBase(const std::string& full, FsContext* ctx, bool record) {
-    const std::string prefix = ctx->baseDir == "/" ? ctx->baseDir : ctx->baseDir + "/";
+    const std::string& dir = ctx->folder.dir();
+    const std::string prefix = dir == "/" ? dir : dir + "/";
     if (full.compare(0, prefix.size(), prefix) != 0) return false;  // e.g. tinygltf's "./uri" fallback
     const std::string rel = full.substr(prefix.size());
-    if (rel.find('\0') != std::string::npos) {  // the OS would read the name only up to the NUL
-        if (record) ctx->record(rel, "contains a NUL character (refused)");
-        return false;
-    }
-    bool bad = rel.empty() || rel[0] == '/' || rel[0] == '\\';
-    if (!bad) {
-        for (const auto& part : fs::path(rel)) {
-            if (part == "..") { bad = true; break; }
-        }
-        if (rel.find('\\') != std::string::npos && rel.find("..") != std::string::npos) bad = true;
-    }
-    if (bad) {
-        if (record) ctx->record(rel, "escapes the scene folder (refused)");
-        return false;
-    }
-    std::error_code ec;
-    const fs::path resolved = fs::weakly_canonical(fs::path(full), ec);
-    if (ec) return true;  // cannot resolve: reading it fails later with "cannot open"
-    const fs::path relResolved = resolved.lexically_relative(ctx->baseCanonical);
-    if (relResolved.empty() || *relResolved.begin() == "..") {
-        if (record) ctx->record(rel, "is a symlink that leads outside the scene folder, to '" + resolved.string() +
-                                         "' (refused)");
+    const std::string why = ctx->folder.problem(rel);
+    if (!why.empty()) {
+        if (record) ctx->record(rel, why);
         return false;
     }
     return true;
@@ -112,12 +79,6 @@ bool insideBase(const std::string& full, FsContext* ctx, bool record) {
 bool fsFileExists(const std::string& path, void* user) {
     auto* ctx = static_cast<FsContext*>(user);
     if (!insideBase(path, ctx, true)) return false;
-    const std::string kind = nonRegularKind(path);
-    if (!kind.empty()) {
-        ctx->record(path.substr(ctx->baseDir.size() + (ctx->baseDir == "/" ? 0 : 1)),
-                    "is " + kind + ", not a regular file (refused)");
-        return false;
-    }
     std::error_code ec;
     return fs::is_regular_file(path, ec);
 }
@@ -200,49 +161,21 @@ Scene GltfReader::run() {
     scene_.sourcePath = path_;
     parse();
     checkExtensions();
+    decodeMeshopt();
+    decodeDraco();
     loadMaterials();
     traverse();
     validateScene(scene_);
     scene_.computeBounds();
-    scene_.loadPeakBytes = peakBytes_;
+    scene_.loadPeakBytes = budget_.peak();
     return std::move(scene_);
 }
 
-namespace {
-std::string mib(uint64_t bytes) {
-    char buf[32];
-    std::snprintf(buf, sizeof buf, "%.1f MiB", double(bytes) / double(1 << 20));
-    return buf;
-}
-}  // namespace
-
 void GltfReader::reserveMemory(uint64_t bytes, const std::string& what, bool kept) {
-    if (bytes > opt_.memoryBudget || usedBytes_ > opt_.memoryBudget - bytes)
-        fail(what + " needs " + mib(bytes) + ", past the loading memory budget of " + mib(opt_.memoryBudget) +
-             " (" + mib(usedBytes_) + " already in use; setting load.memory_budget)");
-    peakBytes_ = std::max(peakBytes_, usedBytes_ + bytes);
-    if (kept) usedBytes_ += bytes;
+    budget_.reserve(bytes, what, kept);
 }
 
-std::vector<unsigned char> GltfReader::readMainFile() {
-    std::error_code ec;
-    if (!fs::exists(path_, ec)) {
-        if (fs::is_symlink(fs::symlink_status(path_, ec))) fail("file not found (a symlink to a missing file)");
-        fail("file not found");
-    }
-    if (fs::is_directory(path_, ec)) fail("is a directory, not a glTF file");
-    const std::string kind = nonRegularKind(path_);  // opening a FIFO would block forever
-    if (!kind.empty()) fail("is " + kind + ", not a regular file");
-    std::ifstream f(path_, std::ios::binary | std::ios::ate);
-    if (!f) fail("cannot open file");
-    std::streamoff size = f.tellg();
-    if (size < 0) fail("cannot determine the file size");
-    if (uint64_t(size) >= uint64_t(UINT_MAX)) fail("file too large (4 GiB or more)");
-    std::vector<unsigned char> data(static_cast<size_t>(size));
-    f.seekg(0);
-    if (size > 0 && !f.read(reinterpret_cast<char*>(data.data()), size)) fail("read error");
-    return data;
-}
+std::vector<unsigned char> GltfReader::readMainFile() { return readSceneFile(path_, "a glTF"); }
 
 // Structural GLB checks done before tinygltf sees the data (tinygltf 2.7 lets the BIN chunk overrun by 8 bytes).
 void GltfReader::checkGlb(const std::vector<unsigned char>& d) const {
@@ -287,6 +220,26 @@ void GltfReader::checkJsonDepth(const unsigned char* p, size_t n) const {
     }
 }
 
+// The GLB with its JSON chunk replaced by `json` (padded with spaces to 4 bytes) and its BIN chunk kept.
+std::vector<unsigned char> GltfReader::replacedGlbJson(const std::vector<unsigned char>& d, const std::string& json) const {
+    const uint32_t length = le32(&d[8]);
+    const uint64_t binStart = 20 + uint64_t(le32(&d[12]));
+    std::string chunk = json;
+    while (chunk.size() % 4) chunk += ' ';
+    const uint64_t total = 20 + chunk.size() + (length - binStart);
+    if (total >= UINT32_MAX) fail("file too large (4 GiB or more)");
+    std::vector<unsigned char> out;
+    out.reserve(size_t(total));
+    auto put32 = [&](uint32_t v) { for (int k = 0; k < 4; ++k) out.push_back((unsigned char)(v >> (8 * k))); };
+    out.insert(out.end(), d.begin(), d.begin() + 8);  // magic, version
+    put32(uint32_t(total));
+    put32(uint32_t(chunk.size()));
+    put32(0x4E4F534Au);
+    out.insert(out.end(), chunk.begin(), chunk.end());
+    out.insert(out.end(), d.begin() + std::ptrdiff_t(binStart), d.begin() + std::ptrdiff_t(length));
+    return out;
+}
+
 void GltfReader::parse() {
     std::vector<unsigned char> data = readMainFile();
     std::string ext = fs::path(path_).extension().string();
@@ -296,21 +249,16 @@ void GltfReader::parse() {
     if (binary) {
         checkGlb(data);
         checkJsonDepth(data.data() + 20, le32(&data[12]));
-        checkJson(data.data() + 20, le32(&data[12]), true);
+        const std::string json = checkJson(data.data() + 20, le32(&data[12]), true);
+        if (!json.empty()) data = replacedGlbJson(data, json);
     } else {
         if (data.empty()) fail("empty file (invalid JSON)");
         checkJsonDepth(data.data(), data.size());
-        checkJson(data.data(), data.size(), false);
+        const std::string json = checkJson(data.data(), data.size(), false);
+        if (!json.empty()) data.assign(json.begin(), json.end());
     }
 
-    FsContext ctx;
-    std::error_code ec;
-    fs::path abs = fs::absolute(fs::path(path_), ec);
-    ctx.baseDir = (ec ? fs::path(path_) : abs).lexically_normal().parent_path().string();
-    while (ctx.baseDir.size() > 1 && ctx.baseDir.back() == '/') ctx.baseDir.pop_back();
-    if (ctx.baseDir.empty()) ctx.baseDir = ".";
-    ctx.baseCanonical = fs::weakly_canonical(fs::path(ctx.baseDir), ec);
-    if (ec) ctx.baseCanonical = fs::path(ctx.baseDir);
+    FsContext ctx(path_);
 
     tinygltf::TinyGLTF gltf;
     gltf.SetFsCallbacks(tinygltf::FsCallbacks{&fsFileExists, &fsExpand, &fsReadWholeFile, &fsWriteWholeFile, &ctx});
@@ -320,10 +268,10 @@ void GltfReader::parse() {
     try {
         if (binary)
             ok = gltf.LoadBinaryFromMemory(&model_, &err, &warnStr, data.data(), unsigned(data.size()),
-                                           ctx.baseDir);
+                                           ctx.folder.dir());
         else
             ok = gltf.LoadASCIIFromString(&model_, &err, &warnStr, reinterpret_cast<const char*>(data.data()),
-                                          unsigned(data.size()), ctx.baseDir);
+                                          unsigned(data.size()), ctx.folder.dir());
     } catch (const std::exception& e) {
         ok = false;
         err = e.what();
@@ -342,13 +290,21 @@ void GltfReader::parse() {
     for (const auto& line : splitLines(warnStr)) warn("tinygltf: " + printable(line));
 }
 
+const std::set<std::string>& supportedExtensions() {
+    static const std::set<std::string> supported = {
+        "KHR_lights_punctual", "KHR_materials_emissive_strength", "KHR_mesh_quantization", "KHR_texture_transform",
+        "KHR_draco_mesh_compression", "EXT_meshopt_compression"};
+    return supported;
+}
+
 void GltfReader::checkExtensions() {
-    static const std::set<std::string> supported = {"KHR_lights_punctual", "KHR_materials_emissive_strength"};
     for (const auto& e : model_.extensionsRequired)
-        if (!supported.count(e)) fail("required extension '" + e + "' is not supported");
+        if (!supportedExtensions().count(e)) fail("required extension '" + e + "' is not supported");
     std::string ignored;
-    for (const auto& e : model_.extensionsUsed)
-        if (!supported.count(e)) ignored += (ignored.empty() ? "" : ", ") + e;
+    for (const auto& e : model_.extensionsUsed) {
+        if (!supportedExtensions().count(e)) ignored += (ignored.empty() ? "" : ", ") + e;
+        if (e == "KHR_mesh_quantization") quantized_ = true;
+    }
     if (!ignored.empty()) warn("ignoring unsupported optional extension(s): " + ignored);
 }
 

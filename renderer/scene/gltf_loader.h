@@ -11,6 +11,7 @@ struct SceneLoadError : std::runtime_error {
     using std::runtime_error::runtime_error;
 };
 
+// The loading limits of every scene format (loadObj takes the same, see scene_loader.h).
 struct GltfLoadOptions {
     // Images whose header claims more pixels than this are refused before any allocation.
     uint64_t maxImagePixels = uint64_t(16384) * 16384;

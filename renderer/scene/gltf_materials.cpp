@@ -1,12 +1,9 @@
 // glTF loader, materials: materials, textures, samplers and images.
-// Images are decoded here (not by tinygltf) with stb_image, after stbi_info_from_memory has checked the claimed
-// dimensions against GltfLoadOptions::maxImagePixels. Only images used by a base-colour or emissive texture are
+// Images are decoded here (not by tinygltf) by decodeImage (scene_files.h), which checks the claimed dimensions
+// against GltfLoadOptions::maxImagePixels first. Only images used by a base-colour or emissive texture are
 // decoded. A missing/corrupt/refused image only drops the texture (warning naming the image), so the material falls
 // back to its factor colour.
 #include "renderer/scene/gltf_reader.h"
-
-#include <stb_image.h>
-#include <stb_image_resize.h>
 
 #include <algorithm>
 #include <climits>
@@ -65,57 +62,12 @@ int GltfReader::resolveImage(int gi, const std::string& user) {
             warn("image '" + name + "' is missing or could not be read" + fallback);
         return -1;
     }
-    if (size == 0 || size > size_t(INT_MAX)) {
-        warn("image '" + name + "' is empty or too large" + fallback);
-        return -1;
-    }
-    int w = 0, h = 0, comp = 0;
-    if (!stbi_info_from_memory(bytes, int(size), &w, &h, &comp) || w <= 0 || h <= 0) {
-        warn("image '" + name + "' is corrupt or in an unsupported format" + fallback);
-        return -1;
-    }
-    if (uint64_t(w) * uint64_t(h) > opt_.maxImagePixels) {
-        warn("image '" + name + "' claims " + std::to_string(w) + "x" + std::to_string(h) +
-             " pixels, more than the limit of " + std::to_string(opt_.maxImagePixels) + fallback);
-        return -1;
-    }
-    const uint64_t decodedBytes = uint64_t(w) * uint64_t(h) * 4;
-    const int limit = std::max(1, opt_.maxTextureSize);
-    const bool downscale = w > limit || h > limit;
-    // the longer side becomes the limit, the other keeps the aspect ratio (at least 1 texel)
-    const auto side = [&](int v, int longest) {
-        return v == longest ? limit : std::max(1, int(std::lround(double(v) * limit / double(longest))));
-    };
-    const int ow = downscale ? side(w, std::max(w, h)) : w, oh = downscale ? side(h, std::max(w, h)) : h;
-    const uint64_t keptBytes = uint64_t(ow) * uint64_t(oh) * 4;
-    // stb's buffer and our copy (or the downscaled one) exist at once
-    reserveMemory(decodedBytes + keptBytes, "image '" + name + "' (" + std::to_string(w) + "x" + std::to_string(h) + ")",
-                  false);
-    int dw = 0, dh = 0, dc = 0;
-    unsigned char* pixels = stbi_load_from_memory(bytes, int(size), &dw, &dh, &dc, 4);
-    if (!pixels) {
-        const char* why = stbi_failure_reason();
-        warn("image '" + name + "' could not be decoded (" + (why ? why : "unknown") + ")" + fallback);
-        return -1;
-    }
     Image out;
-    out.name = name;
-    if (downscale && dw == w && dh == h) {
-        // Larger than a texture may be: it would render black. Colour textures are sRGB, alpha is linear (channel 3).
-        out.rgba8.resize(size_t(keptBytes));
-        stbir_resize_uint8_srgb(pixels, dw, dh, 0, out.rgba8.data(), ow, oh, 0, 4, 3, 0);
-        warn("image '" + name + "' is " + std::to_string(w) + "x" + std::to_string(h) + ", larger than the " +
-             std::to_string(limit) + " texel texture limit; downscaled to " + std::to_string(ow) + "x" +
-             std::to_string(oh));
-        out.width = ow;
-        out.height = oh;
-    } else {
-        out.width = dw;
-        out.height = dh;
-        out.rgba8.assign(pixels, pixels + size_t(dw) * size_t(dh) * 4);
+    const std::string why = decodeImage(bytes, size, name, opt_, budget_, out, scene_.warnings);
+    if (!why.empty()) {
+        warn("image '" + name + "' " + why + fallback);
+        return -1;
     }
-    stbi_image_free(pixels);
-    reserveMemory(out.rgba8.size(), "image '" + name + "'", true);
     scene_.images.push_back(std::move(out));
     imageMap_[size_t(gi)] = int(scene_.images.size()) - 1;
     return imageMap_[size_t(gi)];
@@ -128,8 +80,6 @@ int GltfReader::resolveTexture(const tinygltf::TextureInfo& info, const std::str
         warn(user + ": texture " + std::to_string(ti) + " does not exist; using the fallback colour");
         return -1;
     }
-    if (info.texCoord != 0) warn(user + ": texture uses TEXCOORD_" + std::to_string(info.texCoord) +
-                                 ", only TEXCOORD_0 is supported");
     if (textureMap_[size_t(ti)] != -2) return textureMap_[size_t(ti)];
     textureMap_[size_t(ti)] = -1;
     const auto& t = model_.textures[size_t(ti)];
@@ -155,8 +105,47 @@ int GltfReader::resolveTexture(const tinygltf::TextureInfo& info, const std::str
     return textureMap_[size_t(ti)];
 }
 
+GltfReader::UvSet GltfReader::textureUv(const tinygltf::TextureInfo& info, const std::string& user) {
+    UvSet u;
+    u.texCoord = std::max(0, info.texCoord);
+    auto it = info.extensions.find("KHR_texture_transform");
+    if (it == info.extensions.end() || !it->second.IsObject()) return u;
+    const tinygltf::Value& t = it->second;
+    auto number = [&](const tinygltf::Value& v, double fallback, bool& ok) {
+        if (!v.IsNumber()) { ok = false; return fallback; }
+        const double d = v.GetNumberAsDouble();
+        if (!std::isfinite(d)) { ok = false; return fallback; }
+        return d;
+    };
+    bool ok = true;
+    glm::vec2 offset(0.0f), scale(1.0f);
+    double rotation = 0.0;
+    for (const char* key : {"offset", "scale"}) {
+        if (!t.Has(key)) continue;
+        const tinygltf::Value& a = t.Get(key);
+        glm::vec2& dst = key[0] == 'o' ? offset : scale;
+        if (!a.IsArray() || a.ArrayLen() != 2) { ok = false; continue; }
+        for (int c = 0; c < 2; ++c) dst[c] = float(number(a.Get(c), dst[c], ok));
+    }
+    if (t.Has("rotation")) rotation = number(t.Get("rotation"), 0.0, ok);
+    if (t.Has("texCoord")) {
+        const double tc = number(t.Get("texCoord"), 0.0, ok);
+        if (tc >= 0.0 && tc < 8.0 && tc == std::floor(tc)) u.texCoord = int(tc);
+        else ok = false;
+    }
+    if (!ok) warn(user + ": KHR_texture_transform has a missing or invalid value; those values use their defaults");
+    // The extension's matrix, translation * rotation * scale, column by column as its GLSL writes it.
+    const float c = float(std::cos(rotation)), s = float(std::sin(rotation));
+    const glm::mat3 T(glm::vec3(1, 0, 0), glm::vec3(0, 1, 0), glm::vec3(offset, 1));
+    const glm::mat3 R(glm::vec3(c, s, 0), glm::vec3(-s, c, 0), glm::vec3(0, 0, 1));
+    const glm::mat3 S(glm::vec3(scale.x, 0, 0), glm::vec3(0, scale.y, 0), glm::vec3(0, 0, 1));
+    u.transform = T * R * S;
+    return u;
+}
+
 void GltfReader::loadMaterials() {
     imageMap_.assign(model_.images.size(), -2);
+    materialUv_.clear();
     textureMap_.assign(model_.textures.size(), -2);
     for (size_t i = 0; i < model_.materials.size(); ++i) {
         const auto& gm = model_.materials[i];
@@ -175,6 +164,14 @@ void GltfReader::loadMaterials() {
         for (int c = 0; c < 3 && size_t(c) < gm.emissiveFactor.size(); ++c)
             m.emissiveFactor[c] = float(gm.emissiveFactor[size_t(c)]) * strength;  // validateMaterial
         m.emissiveTexture = resolveTexture(gm.emissiveTexture, user);
+        // One UV set per primitive (Vertex::uv), transformed at load: the base colour's, else the emissive's.
+        const UvSet base = textureUv(gm.pbrMetallicRoughness.baseColorTexture, user + " base colour texture");
+        const UvSet emissive = textureUv(gm.emissiveTexture, user + " emissive texture");
+        if (m.baseColorTexture >= 0 && m.emissiveTexture >= 0 &&
+            (base.texCoord != emissive.texCoord || base.transform != emissive.transform))
+            warn(user + ": the emissive texture's UV set or KHR_texture_transform differs from the base colour "
+                        "texture's; both are sampled with the base colour's");
+        materialUv_.push_back(m.baseColorTexture >= 0 ? base : m.emissiveTexture >= 0 ? emissive : UvSet{});
         m.alphaCutoff = finiteOr(gm.alphaCutoff, 0.5f);
         if (gm.alphaMode == "MASK") {
             m.alphaMode = AlphaMode::Mask;

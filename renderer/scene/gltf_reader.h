@@ -6,6 +6,7 @@
 //   gltf_cameras_lights.cpp cameras and KHR_lights_punctual
 // Only the loader's .cpp files include this header; everyone else uses gltf_loader.h.
 #include "renderer/scene/gltf_loader.h"
+#include "renderer/scene/scene_files.h"
 
 #include <tiny_gltf.h>
 
@@ -15,6 +16,7 @@
 #include <cstdint>
 #include <initializer_list>
 #include <map>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -42,13 +44,17 @@ inline std::string printable(const std::string& s, size_t maxLen = 240) {
     return out;
 }
 
+// The extensions the loader reads; a file that requires any other is refused before tinygltf parses it.
+const std::set<std::string>& supportedExtensions();
+
 inline float finiteOr(double v, float fallback) { return std::isfinite(v) ? float(v) : fallback; }
 inline bool finite3(const glm::vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
 
 // Reads one glTF file into a Scene. Every method that finds the file unusable throws SceneLoadError via fail().
 class GltfReader {
 public:
-    GltfReader(const std::string& path, const GltfLoadOptions& opt) : path_(path), opt_(opt) {}
+    GltfReader(const std::string& path, const GltfLoadOptions& opt)
+        : path_(path), opt_(opt), budget_(path, opt.memoryBudget) {}
     Scene run();
 
 private:
@@ -61,8 +67,16 @@ private:
     std::vector<int> textureMap_;  // glTF texture -> Scene::textures index, -1 unusable, -2 not resolved yet
     std::map<std::string, std::string> uriProblems_;  // URI -> why it was not read (escapes, FIFO, ...)
     uint64_t skippedNonFinite_ = 0;
-    uint64_t usedBytes_ = 0, peakBytes_ = 0;  // counted against GltfLoadOptions::memoryBudget
+    LoadBudget budget_;  // GltfLoadOptions::memoryBudget
     std::vector<uint32_t> meshInstances_;     // glTF mesh -> instances placed so far (for messages)
+    bool quantized_ = false;                  // KHR_mesh_quantization: integer positions, normals, texcoords
+    std::map<std::pair<int, int>, int> dracoIndices_;  // (mesh, primitive) -> index accessor, hidden from tinygltf
+    std::set<int> meshoptFallbacks_;          // buffers that are EXT_meshopt_compression placeholders
+    struct UvSet {                            // per glTF material: the TEXCOORD_n its textures read, transformed
+        int texCoord = 0;
+        glm::mat3 transform{1.0f};            // KHR_texture_transform, applied to the UVs at load
+    };
+    std::vector<UvSet> materialUv_;
 
     [[noreturn]] void fail(const std::string& problem) const { throw SceneLoadError(path_ + ": " + problem); }
     void warn(const std::string& w) { scene_.warnings.push_back(w); }
@@ -71,7 +85,9 @@ private:
     std::vector<unsigned char> readMainFile();
     void checkGlb(const std::vector<unsigned char>& d) const;
     void checkJsonDepth(const unsigned char* p, size_t n) const;
-    void checkJson(const unsigned char* p, size_t n, bool binary);  // gltf_json_checks.cpp
+    // Returns the JSON tinygltf is to parse when it had to be changed (Draco indices, meshopt placeholders), else "".
+    std::string checkJson(const unsigned char* p, size_t n, bool binary);  // gltf_json_checks.cpp
+    std::vector<unsigned char> replacedGlbJson(const std::vector<unsigned char>& glb, const std::string& json) const;
     // Counts `bytes` against the memory budget before they are allocated, or fails naming `what` and the size.
     // kept: they stay for the rest of the load (buffers, the Scene's geometry and images); otherwise they are a
     // transient peak on top of what is kept.
@@ -98,9 +114,16 @@ private:
     uint64_t primitiveBytesBound(const tinygltf::Primitive& prim, int mode) const;
     void addMesh(int meshIndex, const glm::mat4& world);
 
+    // ---- compressed geometry (gltf_compression.cpp): decoded into buffers of their own before meshes are read ----
+    int appendBuffer(std::vector<unsigned char>&& bytes, size_t byteStride);  // returns the new buffer view
+    void decodeMeshopt();  // EXT_meshopt_compression buffer views
+    void decodeDraco();    // KHR_draco_mesh_compression primitives: their accessors get plain float/uint32 views
+
     // ---- materials and images (gltf_materials.cpp) ----
     int resolveImage(int gi, const std::string& user);
     int resolveTexture(const tinygltf::TextureInfo& info, const std::string& user);
+    // The UV set and KHR_texture_transform of a texture reference (an identity, set 0, when it has none).
+    UvSet textureUv(const tinygltf::TextureInfo& info, const std::string& user);
     void loadMaterials();
 
     // ---- cameras and lights (gltf_cameras_lights.cpp) ----
