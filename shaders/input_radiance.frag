@@ -12,13 +12,14 @@ uniform int uLayer;
 uniform int uHasEmission;
 uniform int uFeedback;      // add last frame's indirect light (multi-bounce)
 uniform float uDamping;
+uniform int uSourceLevel;   // this draw fills mip level uSourceLevel: each texel is its level-0 source sample's
 #ifdef DEEPGI_PROBES
 #include "probe_volume.glsl"
 #endif
 layout(location = 0) out vec3 oRadiance;
 layout(location = 1) out vec4 oDirect;  // layer 1's direct irradiance (Direct Irradiance), for the composite
 void main() {
-    ivec2 pix = ivec2(gl_FragCoord.xy);
+    ivec2 pix = sourcePixel(ivec2(gl_FragCoord.xy), uSourceLevel, textureSize(uDepth, 0).xy);
     float d = texelFetch(uDepth, ivec3(pix, uLayer), 0).r;
     if (isSky(d)) { oRadiance = vec3(0.0); oDirect = vec4(0.0); return; }
     vec3 P = worldFromDepth(vec2(pix) + 0.5, d, uInvViewProj);

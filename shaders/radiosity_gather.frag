@@ -54,14 +54,20 @@ vec2 toPixel(vec3 P) {
 
 int mipFor(float h) { return clamp(findMSB(max(int(h), 1)) - uLogMaxOffset, uMinMip, uMaxMip); }
 
-// True if some point of the segment X -> Y (pixel distance hY on screen) lies inside a surface: behind layer 1 by
-// less than the surface's thickness (the interval up to layer 2, at most uThickness).
-bool marchOccluded(vec3 X, vec3 Y, float hY, float jitter, ivec2 size, bool twoLayers) {
+// One march for both layers of a tap (one set of depth fetches): points evenly spaced on the screen from X's pixel
+// a to the tap's pixel b, where the segments X -> Y0 and X -> Y1 (both end on b's pixel ray) have eye depths that
+// interpolate as 1/z across the screen (z itself under an orthographic camera). A segment is blocked where it runs
+// behind layer 1 by less than that surface's thickness (the interval up to layer 2, at most uThickness).
+void marchOccluded(vec2 a, vec2 b, float hY, float zX, float zY0, float zY1, bool test0, bool test1, float jitter,
+                   ivec2 size, bool twoLayers, out bool occ0, out bool occ1) {
+    occ0 = false;
+    occ1 = false;
+    bool persp = uCameraPos.w > 0.5;
+    float iX = persp ? 1.0 / zX : zX, i0 = persp ? 1.0 / zY0 : zY0, i1 = persp ? 1.0 / zY1 : zY1;
     for (int k = 0; k < MAX_VISIBILITY_STEPS; ++k) {
         if (k >= uVisibilitySteps) break;
         float t = (float(k) + jitter) / float(uVisibilitySteps);
-        vec3 P = mix(X, Y, t);
-        ivec2 q = ivec2(toPixel(P));
+        ivec2 q = ivec2(mix(a, b, t));
         if (any(lessThan(q, ivec2(0))) || any(greaterThanEqual(q, size))) continue;
         int m = mipFor(t * hY);
         ivec2 T = q >> m;
@@ -75,11 +81,13 @@ bool marchOccluded(vec3 X, vec3 Y, float hY, float jitter, ivec2 size, bool twoL
             if (!isSky(d2)) thick = min(thick, eyeDepthCurrent(d2) - z1);
         }
 #endif
-        float zP = eyeZ(P);
-        float eps = 0.05 * uThickness + 2e-3 * z1;
-        if (zP > z1 + eps && zP < z1 + thick) return true;
+        float lo = z1 + 0.05 * uThickness + 2e-3 * z1, hi = z1 + thick;
+        float w0 = mix(iX, i0, t), w1 = mix(iX, i1, t);
+        float zP0 = persp ? 1.0 / w0 : w0, zP1 = persp ? 1.0 / w1 : w1;
+        occ0 = occ0 || (test0 && zP0 > lo && zP0 < hi);
+        occ1 = occ1 || (test1 && zP1 > lo && zP1 < hi);
+        if ((occ0 || !test0) && (occ1 || !test1)) break;
     }
-    return false;
 }
 
 // One layer of a tap: position Y, normal nY, and the contribution of its patch (irradiance, covered projected
@@ -133,6 +141,7 @@ void main() {
     vec4 cx = uInvViewProj[0] * (2.0 * uViewport.z), cy = uInvViewProj[1] * (2.0 * uViewport.w), hz = uInvViewProj[2];
     vec4 c = uInvViewProj[3] - uInvViewProj[0] - uInvViewProj[1];
     bool twoLayers = uUseLayer2 != 0;
+    float zX = eyeZ(X);
     vec3 sum = vec3(0.0);
     float covered = 0.0;
     // Tap radii are uniform in [0, rss]: a tap at h stands for 2*pi*h*rss/N pixels^2 of the disk.
@@ -154,37 +163,44 @@ void main() {
         bool v0;
         float c0;
         tapLayer(0, T, m, h0, hz, X, nX, r2, dA, Y0, n0, v0, E0, c0);
-        if (c0 > 0.0 && marchOccluded(X, Y0, h, marchJitter, size, twoLayers)) { E0 = vec3(0.0); c0 = 0.0; }
-        sum += E0;
-        covered += c0;
+        vec3 Y1 = Y0, E1 = vec3(0.0);
+        float c1 = 0.0;
 #ifndef DEEPGI_SINGLE_LAYER  // defined when layer 2 is off: no layer-2 code at all
         if (twoLayers && v0) {
-            vec3 Y1, n1, E1;
+            vec3 n1;
             bool v1;
-            float c1;
             tapLayer(1, T, m, h0, hz, X, nX, r2, dA, Y1, n1, v1, E1, c1);
             if (c1 > 0.0) {
                 // Layer 2 lies behind the layer-1 surface Y0 of this pixel: X sees it only if the segment does not
                 // pass through that surface where it crosses its plane (a thin wall, the pillar in front).
                 float sx = dot(X - Y0, n0), sy = dot(Y1 - Y0, n0);
-                bool blocked = false;
                 if (sx > 0.0 && sy < 0.0) {
                     vec3 Q = mix(X, Y1, sx / (sx - sy));
                     ivec2 q = ivec2(toPixel(Q));
                     if (all(greaterThanEqual(q, ivec2(0))) && all(lessThan(q, size))) {
                         int mq = mipFor(length(vec2(q - pix)));
                         float dq = texelFetch(uDepth, ivec3(q >> mq, 0), mq).r;
-                        blocked = !isSky(dq) && abs(eyeDepthCurrent(dq) - eyeZ(Q)) < uThickness + 0.02 * eyeZ(Q);
+                        if (!isSky(dq) && abs(eyeDepthCurrent(dq) - eyeZ(Q)) < uThickness + 0.02 * eyeZ(Q)) c1 = 0.0;
                     }
-                }
-                if (!blocked && marchOccluded(X, Y1, h, marchJitter, size, twoLayers)) blocked = true;
-                if (!blocked) {
-                    sum += E1;
-                    covered += c1;
                 }
             }
         }
 #endif
+        if (uVisibilitySteps > 0 && (c0 > 0.0 || c1 > 0.0)) {
+            bool occ0, occ1;
+            marchOccluded(vec2(pix) + 0.5, P, h, zX, eyeZ(Y0), eyeZ(Y1), c0 > 0.0, c1 > 0.0, marchJitter, size, twoLayers,
+                          occ0, occ1);
+            if (occ0) c0 = 0.0;
+            if (occ1) c1 = 0.0;
+        }
+        if (c0 > 0.0) {
+            sum += E0;
+            covered += c0;
+        }
+        if (c1 > 0.0) {
+            sum += E1;
+            covered += c1;
+        }
     }
     covered = clamp(covered, 0.0, 1.0);
 #ifdef DEEPGI_PROBES

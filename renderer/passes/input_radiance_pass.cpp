@@ -23,7 +23,8 @@ void InputRadiancePass::table(const PipelineConfig& c, PassTable& t) const {
     if (c.indirect || c.seedComposite)
         t.write({"Input Radiance", {"Input Radiance 1", "Input Radiance 2"}, GL_R11F_G11F_B10F, GL_TEXTURE_2D_ARRAY,
                  SizeRule::screen(), 6, MemoryGroup::Radiosity, Visualize::Radiance,
-                 "Outgoing radiance of both layers (what the gather collects)"},
+                 "Outgoing radiance of both layers (what the gather collects); layer 2 from the gather's finest tap "
+                 "level (radiosity.min_mip) up, its finer levels 0"},
                 "uRadiance");
     // Half floats: the direct light keeps 11 bits of precision (R11G11B10's 6 would put 1.5 % steps in it).
     t.write({"Direct Irradiance", {"Direct Irradiance"}, GL_RGBA16F, GL_TEXTURE_2D, SizeRule::screen(), 1,
@@ -44,14 +45,23 @@ void InputRadiancePass::execute(FrameContext& ctx) {
     prog.feedback.set(ctx.config.indirect && ctx.historyValid);
     prog.damping.set(s.damping);
     ctx.bindSamplers(prog);
-    // No layer-2 work when layer 2 is off, nor without indirect light (layer 1's direct light only).
+    // No layer-2 work when layer 2 is off, nor without indirect light (layer 1's direct light only). Layer 2 goes
+    // straight to the gather's finest level (none finer is read: the seed composite reads layer 1 alone).
     const int layers = radianceOut && ctx.config.layer2 ? 2 : 1;
+    const int radianceLevels = radianceOut ? ctx.entry("Input Radiance").decl.levels : 1;
+    const int layer2Level = ctx.config.indirect ? std::clamp(s.minMip, 0, std::min(5, radianceLevels - 1)) : 0;
+    if (layers == 2)
+        for (int level = 0; level < layer2Level; ++level)  // never read: a defined 0 for the inspector and dumps
+            glClearTexSubImage(radiance, level, 0, 0, 1, std::max(1, ctx.width >> level), std::max(1, ctx.height >> level), 1,
+                               GL_RGB, GL_FLOAT, nullptr);
     for (int layer = 0; layer < layers; ++layer) {
+        const int level = layer == 1 ? layer2Level : 0;
         prog.layer.set(layer);
+        prog.sourceLevel.set(level);
         GLuint fbo = !radianceOut ? ctx.fbos.get({{GL_COLOR_ATTACHMENT1, direct}}, "direct irradiance")
                      : layer == 0 ? ctx.fbos.get({{GL_COLOR_ATTACHMENT0, radiance, 0, layer}, {GL_COLOR_ATTACHMENT1, direct}}, "input radiance 1")
-                                  : ctx.fbos.get({{GL_COLOR_ATTACHMENT0, radiance, 0, layer}}, "input radiance");
-        ctx.drawFullscreen(prog.id(), fbo, ctx.width, ctx.height);
+                                  : ctx.fbos.get({{GL_COLOR_ATTACHMENT0, radiance, level, layer}}, "input radiance");
+        ctx.drawFullscreen(prog.id(), fbo, std::max(1, ctx.width >> level), std::max(1, ctx.height >> level));
     }
     if (!ctx.config.indirect) return;
 
@@ -74,9 +84,12 @@ void InputRadiancePass::execute(FrameContext& ctx) {
         const int w = std::max(1, ctx.width >> level), h = std::max(1, ctx.height >> level);
         for (int layer = 0; layer < layers; ++layer) {
             mipProg.layer.set(layer);
-            GLuint fbo = ctx.fbos.get({{GL_DEPTH_ATTACHMENT, depth, level, layer},
-                                       {GL_COLOR_ATTACHMENT0, normal, level, layer},
-                                       {GL_COLOR_ATTACHMENT1, radiance, level, layer}}, "gather mips");
+            // Layer 2's radiance exists from layer2Level up: the levels up to it are not built from it.
+            GLuint fbo = layer == 1 && level <= layer2Level
+                             ? ctx.fbos.get({{GL_DEPTH_ATTACHMENT, depth, level, layer}, {GL_COLOR_ATTACHMENT0, normal, level, layer}}, "gather mips")
+                             : ctx.fbos.get({{GL_DEPTH_ATTACHMENT, depth, level, layer},
+                                             {GL_COLOR_ATTACHMENT0, normal, level, layer},
+                                             {GL_COLOR_ATTACHMENT1, radiance, level, layer}}, "gather mips");
             glBindFramebuffer(GL_FRAMEBUFFER, fbo);
             glViewport(0, 0, w, h);
             glUseProgram(mipProg.id());

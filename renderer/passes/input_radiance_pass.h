@@ -6,7 +6,8 @@ namespace deepgi {
 // The one evaluation of direct light: shadowed direct irradiance at layer 1 (Direct Irradiance, which the composite
 // reads), and with indirect light the outgoing radiance of both layers (direct light + emission, plus last frame's
 // indirect light on layer 1: one more bounce per frame), then the rotated-grid mip chains of depth, normal and
-// radiance.
+// radiance. Layer 2's radiance is read by the gather only from its finest tap level (radiosity.min_mip) up, whose
+// texels are point samples of level 0 (gather_mips.frag): it is evaluated at that level, for those samples alone.
 class InputRadiancePass final : public RenderPass {
 public:
     const char* name() const override { return "Input radiance"; }
@@ -21,6 +22,7 @@ private:
         gl::Uniform<bool> hasEmission{*this, "uHasEmission"};
         gl::Uniform<bool> feedback{*this, "uFeedback"};
         gl::Uniform<float> damping{*this, "uDamping"};
+        gl::Uniform<int> sourceLevel{*this, "uSourceLevel"};
     };
     struct MipProgram : gl::Program {
         using gl::Program::Program;
