@@ -1,5 +1,7 @@
 #include "renderer/passes/probe_update_pass.h"
 
+#include "renderer/core/util.h"
+
 #include "renderer/probes/probe_volume.h"
 
 #include <algorithm>
@@ -26,9 +28,13 @@ void ProbeUpdatePass::table(const PipelineConfig& c, PassTable& t) const {
 
 void ProbeUpdatePass::execute(FrameContext& ctx) {
     ProbeVolume& v = *ctx.probes;
-    if (ctx.shadowKey != lightKey_) {  // new lights (or a new volume): every probe starts over
+    // New lights, another bounce damping (the probes' bounce is damped like the screen's), or a new volume: every
+    // probe starts over; a settled volume would otherwise keep the old answer for good.
+    const RadiositySettings& rs = ctx.settings;
+    const uint64_t key = fnv1a(ctx.shadowKey, &rs.damping, sizeof(rs.damping)) | 1u;
+    if (key != lightKey_) {
         if (lightKey_ != 0 && uploadedVolume_ == &v) v.resetHistory();
-        lightKey_ = ctx.shadowKey;
+        lightKey_ = key;
     }
     int fewest = std::numeric_limits<int>::max();
     for (int i = 0; i < v.probeCount(); ++i)

@@ -16,7 +16,7 @@ public:
 
 private:
     uint64_t uploadedGeneration_ = 0;  // registry generation of the last full upload
-    uint64_t lightKey_ = 0;            // the lights the probes hold (FrameContext::shadowKey)
+    uint64_t lightKey_ = 0;            // what the probes' light follows: the lights (FrameContext::shadowKey) and the bounce damping
     const ProbeVolume* uploadedVolume_ = nullptr;
 };
 

@@ -289,6 +289,9 @@ bool ProbeVolume::converging() const {
 // whatever came before (a capture re-rendered headless matches the viewer that changed its lights on the way).
 void ProbeVolume::resetHistory() {
     std::fill(updates_.begin(), updates_.end(), 0);
+    // The bounce of the first updates reads the probes' own irradiance: none, as in a new volume (old light would
+    // otherwise come back through it: a ghost of the old lighting, or multi-bounce light in a one-bounce run).
+    for (size_t i = 0; i + 3 < irradiance_.size(); i += 4) irradiance_[i] = irradiance_[i + 1] = irradiance_[i + 2] = 0.0f;
     updateIndex_ = 0;
     cursor_ = 0;
 }
