@@ -61,6 +61,7 @@ bool Viewer::init() {
     settings_ = opt_.settings;
     if (opt_.screenshotDir.empty()) opt_.screenshotDir = defaultScreenshotDir();  // never the current folder
     loadState();
+    if (opt_.targetFrameMs >= 0.0) view_.targetFrameMs = float(opt_.targetFrameMs);  // the command line wins
     if (!opt_.scriptPath.empty()) script_ = ui::ScriptRunner(opt_.scriptPath, ui::parseViewerScript(opt_.scriptPath));  // fail before opening a window
 
     glfwSetErrorCallback([](int code, const char* msg) { std::fprintf(stderr, "deepgi view: GLFW error %d: %s\n", code, msg); });
@@ -86,12 +87,13 @@ bool Viewer::init() {
     }
     glClampColor(GL_CLAMP_READ_COLOR, GL_FALSE);  // raw SNORM/float readbacks
 
-    // Our callbacks first: the ImGui backend chains to them.
+    // Our callbacks first: the ImGui backend chains to them. They queue; the frame handles the queue in order.
+    using K = InputEvent::Kind;
     glfwSetWindowUserPointer(window_, this);
-    glfwSetMouseButtonCallback(window_, [](GLFWwindow* w, int b, int a, int m) { self(w)->onMouseButton(b, a, m, false); });
-    glfwSetCursorPosCallback(window_, [](GLFWwindow* w, double x, double y) { self(w)->onCursor(x, y, false); });
-    glfwSetScrollCallback(window_, [](GLFWwindow* w, double, double dy) { self(w)->onScroll(dy, false); });
-    glfwSetKeyCallback(window_, [](GLFWwindow* w, int k, int, int a, int m) { self(w)->onKey(k, a, m, false); });
+    glfwSetMouseButtonCallback(window_, [](GLFWwindow* w, int b, int a, int m) { self(w)->queueInput({K::Button, b, a, m}); });
+    glfwSetCursorPosCallback(window_, [](GLFWwindow* w, double x, double y) { self(w)->queueInput({K::Cursor, 0, 0, 0, x, y}); });
+    glfwSetScrollCallback(window_, [](GLFWwindow* w, double, double dy) { self(w)->queueInput({K::Scroll, 0, 0, 0, 0.0, dy}); });
+    glfwSetKeyCallback(window_, [](GLFWwindow* w, int k, int, int a, int m) { self(w)->queueInput({K::Key, k, a, m}); });
 
     IMGUI_CHECKVERSION();
     ImGui::CreateContext();
@@ -120,6 +122,7 @@ bool Viewer::init() {
     const char* glRenderer = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
     const bool software = glRenderer && (std::strstr(glRenderer, "llvmpipe") || std::strstr(glRenderer, "softpipe"));
     ro.timing = software ? TimingMode::WallClock : TimingMode::GpuQueries;
+    softwareGl_ = software;
     renderer_ = std::make_unique<Renderer>(ro);
     views_[0] = std::make_unique<BufferViewPass>();
     views_[1] = std::make_unique<BufferViewPass>();
@@ -230,10 +233,23 @@ std::string Viewer::loadReference(const std::string& path) {
 
 // ---- frame -------------------------------------------------------------------------------------------------
 
+double Viewer::targetFrameMs() const {
+    if (view_.targetFrameMs >= 0.0f) return double(view_.targetFrameMs);
+    return softwareGl_ ? 100.0 : 1000.0 / 60.0;
+}
+
 void Viewer::frame() {
     const double t = nowSeconds();
+    const double frameMs = (t - lastFrameTime_) * 1000.0;  // the previous frame, whole: input, render, UI, swap
     const double dt = std::min(t - lastFrameTime_, 0.25);
     lastFrameTime_ = t;
+    FrameSample last = lastSample_;
+    last.frameMs = frameMs;
+    if (lastRenderW_ > 0) {
+        recentFrames_.push_back({frameMs, last.renderMs, lastRenderW_, lastRenderH_, lastMoving_});
+        if (recentFrames_.size() > 120) recentFrames_.pop_front();
+    }
+    lastSample_.valid = true;  // this frame, unless something below makes it untypical
 
     // Hot reload: poll the mtimes of every file the programs used, twice a second.
     if (t - lastPoll_ > 0.5) {
@@ -242,10 +258,12 @@ void Viewer::frame() {
         if (n > 0) {
             setStatus("reloaded " + std::to_string(n) + " shader program(s)");
             renderError_.clear();
+            lastSample_.valid = false;
         }
     }
     script_.step(*this, t);
     if (script_.finished()) quit_ = true;
+    handleInput();
     updateFly(dt);
 
     int fbw = 0, fbh = 0, ww = 0, wh = 0;
@@ -253,6 +271,8 @@ void Viewer::frame() {
     glfwGetWindowSize(window_, &ww, &wh);
     if (fbw <= 0 || fbh <= 0 || ww <= 0 || wh <= 0) {  // minimised
         renderer_->resize(0, 0);
+        lastRenderW_ = 0;
+        lastSample_.valid = false;
         return;
     }
     const float scaleX = float(fbw) / float(ww), scaleY = float(fbh) / float(wh);
@@ -265,11 +285,31 @@ void Viewer::frame() {
     inspX1_ = mainW;
     vpY0_ = headerH_;
     vpY1_ = float(wh);
-    const int rw = std::max(1, int((vpX1_ - vpX0_) * scaleX * view_.resolutionScale));
-    const int rh = std::max(1, int((vpY1_ - vpY0_) * scaleY * view_.resolutionScale));
+    fullW_ = std::max(1, int((vpX1_ - vpX0_) * scaleX * view_.resolutionScale));
+    fullH_ = std::max(1, int((vpY1_ - vpY0_) * scaleY * view_.resolutionScale));
+
+    // Dynamic resolution: the camera moved in the last half second (and the last 3 frames) = moving.
+    const Camera cam = ctl_.camera(scene_->bounds);
+    const bool changed = haveLastCamera_ &&
+                         (cam.cameraToWorld != lastCamera_.cameraToWorld || cam.perspective != lastCamera_.perspective ||
+                          cam.yfov != lastCamera_.yfov || cam.orthoHalfHeight != lastCamera_.orthoHalfHeight);
+    lastCamera_ = cam;
+    haveLastCamera_ = true;
+    if (changed) {
+        lastMotionTime_ = t;
+        framesStill_ = 0;
+    } else if (framesStill_ < (1 << 20)) {
+        ++framesStill_;
+    }
+    moving_ = framesStill_ < 3 || t - lastMotionTime_ < 0.5;
+    dynres_.setTarget(targetFrameMs());
+    const int step = dynres_.next(moving_, last);
+    const int rw = std::max(1, int(std::lround(fullW_ * double(step) / DynamicResolution::kSteps)));
+    const int rh = std::max(1, int(std::lround(fullH_ * double(step) / DynamicResolution::kSteps)));
+    if (rw != renderer_->width() || rh != renderer_->height() || convergePending_ > 0) lastSample_.valid = false;
 
     renderer_->resize(rw, rh);
-    renderer_->setCamera(ctl_.camera(scene_->bounds));
+    renderer_->setCamera(cam);
     const double r0 = nowSeconds();
     try {
         // `converge N` (script or Settings panel): N - 1 frames now, the Nth below as usual.
@@ -281,7 +321,13 @@ void Viewer::frame() {
         renderError_ = e.what();
         convergePending_ = 0;
     }
-    profiler_.record(renderer_->timings(), (nowSeconds() - r0) * 1000.0);
+    const double renderMs = (nowSeconds() - r0) * 1000.0;
+    profiler_.record(renderer_->timings(), renderMs);
+    lastSample_.renderMs = renderMs;
+    lastSample_.step = step;
+    lastRenderW_ = renderer_->width();
+    lastRenderH_ = renderer_->height();
+    lastMoving_ = moving_;
     afterRender();
 
     ImGui_ImplOpenGL3_NewFrame();
@@ -361,9 +407,25 @@ void Viewer::drawViewport() {
             p.exposureEV += settings_.exposure;  // the frame's exposure, so both halves read as the final image
             p.splitX = view_.pathTraceSplit;
         }
-        const GLuint tex = drawView(0, src, split.valid() ? &split : nullptr, p, ow, oh);
-        ImGui::GetBackgroundDrawList()->AddImage((ImTextureID)(intptr_t)tex, ImVec2(vpX0_, vpY0_), ImVec2(vpX1_, vpY1_),
-                                                 ImVec2(0, 1), ImVec2(1, 0));
+        // A frame smaller than the viewport (dynamic resolution, the resolution slider): the view is drawn at the
+        // frame's size and magnified bilinearly into the viewport, not in blocks of whole texels.
+        const bool magnify = ptMode == ui::PathTraceMode::Off && tpp < 1.0f && src.levelWidth() == renderer_->width() &&
+                             src.levelHeight() == renderer_->height();
+        if (magnify) {
+            p.texelsPerPixel = 1.0f;
+            p.origin = glm::vec2(0.0f);
+        }
+        const GLuint tex = drawView(0, src, split.valid() ? &split : nullptr, p, magnify ? int(sw) : ow, magnify ? int(sh) : oh);
+        glTextureParameteri(tex, GL_TEXTURE_MAG_FILTER, magnify ? GL_LINEAR : GL_NEAREST);
+        glTextureParameteri(tex, GL_TEXTURE_MIN_FILTER, magnify ? GL_LINEAR : GL_NEAREST);
+        ImVec2 q0(vpX0_, vpY0_), q1(vpX1_, vpY1_);
+        if (magnify) {  // the frame's own aspect, centred (it differs from the viewport's by a rounding at most)
+            const float k = std::min(vw / sw, vh / sh);
+            const float cx = (vpX0_ + vpX1_) * 0.5f, cy = (vpY0_ + vpY1_) * 0.5f;
+            q0 = ImVec2(cx - sw * k * 0.5f, cy - sh * k * 0.5f);
+            q1 = ImVec2(cx + sw * k * 0.5f, cy + sh * k * 0.5f);
+        }
+        ImGui::GetBackgroundDrawList()->AddImage((ImTextureID)(intptr_t)tex, q0, q1, ImVec2(0, 1), ImVec2(1, 0));
     }
 
     // Overlay text: view name, sizes, timing, status; the path tracer's figures.
@@ -372,11 +434,17 @@ void Viewer::drawViewport() {
         dl->AddText(ImVec2(x + 1, y + 1), IM_COL32(0, 0, 0, 200), text.c_str());
         dl->AddText(ImVec2(x, y), col, text.c_str());
     };
-    const float fm = profiler_.cpuFrameMs.empty() ? 0.0f : profiler_.cpuFrameMs.back();
-    char line[256];
-    std::snprintf(line, sizeof(line), "%s | %s | %dx%d | %.0f ms", view_.viewName.c_str(),
-                  ptMode == ui::PathTraceMode::Off ? view_.buffer.c_str() : "Path trace this view", renderer_->width(),
-                  renderer_->height(), double(fm));
+    const double fm = recentFrames_.empty() ? 0.0 : recentFrames_.back().frameMs;
+    const double rm = profiler_.cpuFrameMs.empty() ? 0.0 : double(profiler_.cpuFrameMs.back());
+    char size[128];
+    if (!dynres_.enabled()) std::snprintf(size, sizeof(size), "%dx%d", renderer_->width(), renderer_->height());
+    else if (dynres_.step() < DynamicResolution::kSteps)
+        std::snprintf(size, sizeof(size), "%dx%d dynamic %d/8 of %dx%d (target %.0f ms)", renderer_->width(), renderer_->height(),
+                      dynres_.step(), fullW_, fullH_, dynres_.target());
+    else std::snprintf(size, sizeof(size), "%dx%d full (target %.0f ms)", renderer_->width(), renderer_->height(), dynres_.target());
+    char line[384];
+    std::snprintf(line, sizeof(line), "%s | %s | %s | %.0f ms (render %.0f)", view_.viewName.c_str(),
+                  ptMode == ui::PathTraceMode::Off ? view_.buffer.c_str() : "Path trace this view", size, fm, rm);
     shadowed(vpX0_ + 8, vpY0_ + 6, IM_COL32(235, 235, 235, 255), line);
     if (view_.pathTrace != ui::PathTraceMode::Off) {  // the status shows before the first samples arrive
         // One overlay line per part ("path traced N spp", "whole: ...", "indirect: ...") so that narrow views keep them.
@@ -411,6 +479,7 @@ void Viewer::drawSidebar(float x0, float height) {
     m.memory = renderer_->textures().memoryReport();
     m.width = renderer_->width();
     m.height = renderer_->height();
+    m.autoTargetFrameMs = softwareGl_ ? 100.0f : 1000.0f / 60.0f;
     pipeline_ = pipelineGraph(*renderer_, settings_);
     m.pipeline = &pipeline_;
     ui::SidebarState& st = sidebar_;
