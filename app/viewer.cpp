@@ -246,7 +246,7 @@ void Viewer::frame() {
     FrameSample last = lastSample_;
     last.frameMs = frameMs;
     if (lastRenderW_ > 0) {
-        recentFrames_.push_back({frameMs, last.renderMs, lastRenderW_, lastRenderH_, lastMoving_});
+        recentFrames_.push_back({frameMs, last.renderMs, lastRenderW_, lastRenderH_, lastMoving_, lastRendered_});
         if (recentFrames_.size() > 120) recentFrames_.pop_front();
     }
     lastSample_.valid = true;  // this frame, unless something below makes it untypical
@@ -259,10 +259,13 @@ void Viewer::frame() {
             setStatus("reloaded " + std::to_string(n) + " shader program(s)");
             renderError_.clear();
             lastSample_.valid = false;
+            needRender_ = true;
         }
     }
+    uiInput_ = false;
     script_.step(*this, t);
     if (script_.finished()) quit_ = true;
+    uiInput_ = uiInput_ || !uiDrag_.empty();
     handleInput();
     updateFly(dt);
 
@@ -303,6 +306,21 @@ void Viewer::frame() {
     }
     moving_ = framesStill_ < 3 || t - lastMotionTime_ < 0.5;
     dynres_.setTarget(targetFrameMs());
+    // A UI frame: while the panels are being used (pointer over them, a text field typing) and nothing the render
+    // depends on changed, the frame is not rendered again: the UI answers at its own cost, the viewport keeps the
+    // last frame (still camera: the same image). Anything that changes the render renders the next frame.
+    const bool uiOnly = uiInput_ && !moving_ && !needRender_ && convergePending_ == 0 && renderer_->frameIndex() > 0 &&
+                        settings_ == renderedSettings_ && renderer_->width() == fullW_ && renderer_->height() == fullH_;
+    needRender_ = false;
+    lastRendered_ = !uiOnly;
+    lastMoving_ = moving_;
+    if (uiOnly) {
+        ++uiOnlyFrames_;
+        lastSample_.valid = false;
+        lastSample_.renderMs = 0.0;
+        drawFrameUi(fbw, fbh);
+        return;
+    }
     const int step = dynres_.next(moving_, last);
     const int rw = std::max(1, int(std::lround(fullW_ * double(step) / DynamicResolution::kSteps)));
     const int rh = std::max(1, int(std::lround(fullH_ * double(step) / DynamicResolution::kSteps)));
@@ -322,14 +340,17 @@ void Viewer::frame() {
         convergePending_ = 0;
     }
     const double renderMs = (nowSeconds() - r0) * 1000.0;
+    renderedSettings_ = settings_;
     profiler_.record(renderer_->timings(), renderMs);
     lastSample_.renderMs = renderMs;
     lastSample_.step = step;
     lastRenderW_ = renderer_->width();
     lastRenderH_ = renderer_->height();
-    lastMoving_ = moving_;
     afterRender();
+    drawFrameUi(fbw, fbh);
+}
 
+void Viewer::drawFrameUi(int fbw, int fbh) {
     ImGui_ImplOpenGL3_NewFrame();
     ImGui_ImplGlfw_NewFrame();
     applyScriptPointer();
@@ -494,6 +515,8 @@ void Viewer::drawSidebar(float x0, float height) {
     st.yfov = ctl_.yfov;
     const ui::SidebarActions a = ui::drawSidebar(m, st, x0, height);
 
+    needRender_ = needRender_ || a.settings.resetHistory || a.settings.convergeFrames > 0 || !a.pipeline.showTexture.empty() ||
+                  a.frameAll || a.camera >= 0 || a.projectionChanged || a.fovChanged || a.reloadShaders || a.capture;
     if (a.settings.resetHistory) renderer_->resetHistory();
     if (a.settings.convergeFrames > 0) {
         convergePending_ += a.settings.convergeFrames;

@@ -92,6 +92,7 @@ private:
     void saveState();
     void frame();
     void drawUi();
+    void drawFrameUi(int fbw, int fbh);  // the UI over the last rendered frame, then the swap
     void drawSidebar(float x0, float height);
     void updateFly(double dt);
     void handleInput();  // the queued events, in arrival order
@@ -196,11 +197,15 @@ private:
     struct FrameRecord {
         double frameMs, renderMs;
         int width, height;
-        bool moving;
+        bool moving, rendered;
     };
     std::deque<FrameRecord> recentFrames_;
     int lastRenderW_ = 0, lastRenderH_ = 0;
-    bool lastMoving_ = false;
+    bool lastMoving_ = false, lastRendered_ = false;
+    // UI frames: the panels in use, nothing the render reads changed (see frame()).
+    bool uiInput_ = false, needRender_ = false;
+    Settings renderedSettings_;
+    size_t uiOnlyFrames_ = 0;
 };
 
 double nowSeconds();

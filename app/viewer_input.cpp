@@ -29,6 +29,9 @@ void Viewer::handleInput() {
         const InputEvent e = input_.front();
         input_.pop_front();
         ++inputEvents_;
+        // Real input the panels take (pointer over a window, a text field typing) is UI input: see frame().
+        if (!e.fromScript && imguiReady_)
+            uiInput_ = uiInput_ || (e.kind == InputEvent::Kind::Key ? ImGui::GetIO().WantCaptureKeyboard : ImGui::GetIO().WantCaptureMouse);
         switch (e.kind) {
             case InputEvent::Kind::Button: onMouseButton(e.code, e.action, e.mods, e.fromScript); break;
             case InputEvent::Kind::Cursor: onCursor(e.x, e.y, e.fromScript); break;

@@ -34,6 +34,7 @@ void Viewer::scriptDrag(int button, glm::dvec2 from, glm::dvec2 to, int mods) {
 }
 
 void Viewer::scriptPointer(glm::dvec2 at, int button, bool down) {
+    uiInput_ = true;  // the script's pointer is the UI's (a click on the viewport starts no drag)
     scriptPointerSet_ = true;
     scriptPointerAt_ = at;
     if (button >= 0) {
@@ -159,7 +160,7 @@ void Viewer::scriptStats(const std::string& path) {
     nlohmann::json frames = nlohmann::json::array(), frameMs = nlohmann::json::array();
     for (const auto& f : recentFrames_) {  // oldest first
         frames.push_back({{"frame_ms", f.frameMs}, {"render_ms", f.renderMs}, {"width", f.width}, {"height", f.height},
-                          {"moving", f.moving}});
+                          {"moving", f.moving}, {"rendered", f.rendered}});
         frameMs.push_back(f.frameMs);
     }
     const nlohmann::json j = {
@@ -176,6 +177,7 @@ void Viewer::scriptStats(const std::string& path) {
         {"frames", frames},
         {"input_events", inputEvents_},
         {"key_presses", keyPresses_},
+        {"ui_only_frames", uiOnlyFrames_},
         {"sidebar", view_.sidebar},
         {"inspector", inspector_.open},
         {"fly_mode", view_.flyMode},

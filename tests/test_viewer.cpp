@@ -978,3 +978,19 @@ TEST_F(ViewerRound2, QuickKeyPressesAreAllHandled) {
     EXPECT_LT(moved(e, f), 1e-9) << "and keeps the view";
 }
 
+
+// The UI answers at its own cost while the panels are used: with the pointer over the sidebar and nothing the render
+// reads changed, frames draw the UI over the last rendered frame; a setting changed meanwhile renders the next frame.
+TEST_F(ViewerRound2, PanelsInUseDoNotWaitForTheRender) {
+    std::string hovers;
+    for (int i = 0; i < 6; ++i) hovers += "hover " + std::to_string(400 + i % 2) + " 100\nwait 1\n";
+    ViewerRun r = view("wait 3\nstats a.json\n" + hovers + "stats b.json\nset composite.exposure=2\nhover 400 101\nwait 1\nstats c.json\n");
+    ASSERT_EQ(r.rc, 0) << r.log;
+    const nlohmann::json a = readJson(path("a.json")), b = readJson(path("b.json")), c = readJson(path("c.json"));
+    EXPECT_GE(b.at("ui_only_frames").get<int>() - a.at("ui_only_frames").get<int>(), 5) << "hovering the sidebar: UI frames";
+    EXPECT_EQ(c.at("frames").back().at("rendered"), true) << "a changed setting renders";
+    double ui = 0.0, full = 0.0;
+    int nu = 0, nf = 0;
+    for (const auto& f : c.at("frames")) (f.at("rendered").get<bool>() ? (full += f.at("frame_ms").get<double>(), ++nf) : (ui += f.at("frame_ms").get<double>(), ++nu));
+    std::printf("UI frames %.1f ms (%d), rendered frames %.1f ms (%d) (a printout, not a test)\n", nu ? ui / nu : 0.0, nu, nf ? full / nf : 0.0, nf);
+}
