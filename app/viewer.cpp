@@ -517,6 +517,10 @@ void Viewer::drawSidebar(float x0, float height) {
 
     needRender_ = needRender_ || a.settings.resetHistory || a.settings.convergeFrames > 0 || !a.pipeline.showTexture.empty() ||
                   a.frameAll || a.camera >= 0 || a.projectionChanged || a.fovChanged || a.reloadShaders || a.capture;
+    if (a.settings.changed || a.pipeline.settingsChanged) {  // a slider dragged: the render follows like a motion
+        lastMotionTime_ = nowSeconds();
+        framesStill_ = 0;
+    }
     if (a.settings.resetHistory) renderer_->resetHistory();
     if (a.settings.convergeFrames > 0) {
         convergePending_ += a.settings.convergeFrames;
