@@ -10,6 +10,7 @@
 
 #include "renderer/core/image_io.h"
 #include "renderer/scene/gltf_loader.h"
+#include "renderer/probes/probe_volume.h"
 
 #include <algorithm>
 #include <chrono>
@@ -309,13 +310,24 @@ void Viewer::frame() {
     // A UI frame: while the panels are being used (pointer over them, a text field typing) and nothing the render
     // depends on changed, the frame is not rendered again: the UI answers at its own cost, the viewport keeps the
     // last frame (still camera: the same image). Anything that changes the render renders the next frame.
-    const bool uiOnly = uiInput_ && !moving_ && !needRender_ && convergePending_ == 0 && renderer_->frameIndex() > 0 &&
-                        settings_ == renderedSettings_ && renderer_->width() == fullW_ && renderer_->height() == fullH_;
+    const bool unchanged = !moving_ && !needRender_ && convergePending_ == 0 && renderer_->frameIndex() > 0 &&
+                           settings_ == renderedSettings_ && renderer_->width() == fullW_ && renderer_->height() == fullH_ &&
+                           renderError_.empty() && renderer_->shaders().errors().empty();
+    // Converged: still and unchanged for as many frames as the temporal history needs to fall under 1 % (and the
+    // probes no longer updating): the frames after it would be the same image, so they only draw the UI.
+    const uint64_t probeUpdates = renderer_->probeVolume() ? renderer_->probeVolume()->updateCount() : 0;
+    if (!unchanged || probeUpdates != lastProbeUpdates_ || view_.pathTrace != ui::PathTraceMode::Off) stillFrames_ = 0;
+    lastProbeUpdates_ = probeUpdates;
+    const float alpha = std::clamp(settings_.hysteresis, 0.0f, 0.995f);
+    const int convergeFrames = 4 + (settings_.temporal && alpha > 0.0f ? int(std::ceil(std::log(0.01) / std::log(double(alpha)))) : 0);
+    converged_ = stillFrames_ >= convergeFrames;
+    const bool uiOnly = unchanged && (uiInput_ || converged_);
     needRender_ = false;
     lastRendered_ = !uiOnly;
     lastMoving_ = moving_;
     if (uiOnly) {
         ++uiOnlyFrames_;
+        if (converged_) ++idleFrames_;
         lastSample_.valid = false;
         lastSample_.renderMs = 0.0;
         drawFrameUi(fbw, fbh);
@@ -341,6 +353,7 @@ void Viewer::frame() {
     }
     const double renderMs = (nowSeconds() - r0) * 1000.0;
     renderedSettings_ = settings_;
+    ++stillFrames_;
     profiler_.record(renderer_->timings(), renderMs);
     lastSample_.renderMs = renderMs;
     lastSample_.step = step;
@@ -463,6 +476,7 @@ void Viewer::drawViewport() {
         std::snprintf(size, sizeof(size), "%dx%d dynamic %d/8 of %dx%d (target %.0f ms)", renderer_->width(), renderer_->height(),
                       dynres_.step(), fullW_, fullH_, dynres_.target());
     else std::snprintf(size, sizeof(size), "%dx%d full (target %.0f ms)", renderer_->width(), renderer_->height(), dynres_.target());
+    if (converged_) std::snprintf(size + std::strlen(size), sizeof(size) - std::strlen(size), ", converged: idle");
     char line[384];
     std::snprintf(line, sizeof(line), "%s | %s | %s | %.0f ms (render %.0f)", view_.viewName.c_str(),
                   ptMode == ui::PathTraceMode::Off ? view_.buffer.c_str() : "Path trace this view", size, fm, rm);
@@ -547,7 +561,9 @@ int Viewer::run() {
         return 1;
     }
     while (!glfwWindowShouldClose(window_) && !quit_) {
+        // Minimised, or converged with no script to play: sleep until an event (or the shader poll's next turn).
         if (glfwGetWindowAttrib(window_, GLFW_ICONIFIED)) glfwWaitEventsTimeout(0.1);
+        else if (converged_ && !script_.active()) glfwWaitEventsTimeout(0.25);
         else glfwPollEvents();
         frame();
     }

@@ -205,7 +205,10 @@ private:
     // UI frames: the panels in use, nothing the render reads changed (see frame()).
     bool uiInput_ = false, needRender_ = false;
     Settings renderedSettings_;
-    size_t uiOnlyFrames_ = 0;
+    size_t uiOnlyFrames_ = 0, idleFrames_ = 0;
+    int stillFrames_ = 0;              // rendered frames since anything the render reads changed
+    uint64_t lastProbeUpdates_ = 0;
+    bool converged_ = false;           // still long enough: frames draw the UI only
 };
 
 double nowSeconds();

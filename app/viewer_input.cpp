@@ -130,6 +130,7 @@ void Viewer::onKey(int key, int action, int mods, bool fromScript) {
         case GLFW_KEY_F5: {
             const int n = renderer_->shaders().reloadAll();
             setStatus("reloaded " + std::to_string(n) + " shader programs");
+            needRender_ = true;
             break;
         }
         case GLFW_KEY_F12: capture(); break;

@@ -152,7 +152,10 @@ void Viewer::scriptDumpFigures(const std::string& path) {
     if (!out) throw std::runtime_error("cannot write " + path);
 }
 
-void Viewer::scriptReload() { renderer_->shaders().reloadAll(); }
+void Viewer::scriptReload() {
+    renderer_->shaders().reloadAll();
+    needRender_ = true;
+}
 
 void Viewer::scriptStats(const std::string& path) {
     int ww = 0, wh = 0;
@@ -178,6 +181,8 @@ void Viewer::scriptStats(const std::string& path) {
         {"input_events", inputEvents_},
         {"key_presses", keyPresses_},
         {"ui_only_frames", uiOnlyFrames_},
+        {"idle_frames", idleFrames_},
+        {"converged", converged_},
         {"sidebar", view_.sidebar},
         {"inspector", inspector_.open},
         {"fly_mode", view_.flyMode},

@@ -995,3 +995,18 @@ TEST_F(ViewerRound2, PanelsInUseDoNotWaitForTheRender) {
     for (const auto& f : c.at("frames")) (f.at("rendered").get<bool>() ? (full += f.at("frame_ms").get<double>(), ++nf) : (ui += f.at("frame_ms").get<double>(), ++nu));
     std::printf("UI frames %.1f ms (%d), rendered frames %.1f ms (%d) (a printout, not a test)\n", nu ? ui / nu : 0.0, nu, nf ? full / nf : 0.0, nf);
 }
+
+// A still, converged view stops rendering: with the temporal filter off (one frame is the converged image) and the
+// probes settled, after a few still frames the frames only draw the UI; a motion renders again.
+TEST_F(ViewerRound2, ConvergedViewIdlesUntilSomethingChanges) {
+    ViewerRun r = view(std::string(kSetup) + "wait 12\nstats a.json\nscreenshot a.png\nwait 3\nstats b.json\nscreenshot b.png\n"
+                       "drag middle 240 150 250 152\nwait 1\nstats c.json\n");
+    ASSERT_EQ(r.rc, 0) << r.log;
+    const nlohmann::json a = readJson(path("a.json")), b = readJson(path("b.json")), c = readJson(path("c.json"));
+    EXPECT_EQ(a.at("converged"), true);
+    EXPECT_GE(b.at("idle_frames").get<int>() - a.at("idle_frames").get<int>(), 3);
+    for (size_t i = a.at("frames").size(); i < b.at("frames").size(); ++i) EXPECT_EQ(b.at("frames")[i].at("rendered"), false);
+    EXPECT_LT(meanAbsDiff(shot("a.png"), shot("b.png")), 1e-6) << "the idle viewport shows the last frame";
+    EXPECT_EQ(c.at("converged"), false);
+    EXPECT_EQ(c.at("frames").back().at("rendered"), true) << "a motion renders";
+}
