@@ -227,6 +227,7 @@ std::string Viewer::loadReference(const std::string& path) {
         glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
         glTextureSubImage2D(refTex_.id(), 0, 0, 0, img.width, img.height, GL_RGBA, GL_FLOAT, rgba.pixels.data());
         refImage_ = std::move(img);
+        ++referenceLoads_;
         return "";
     } catch (const std::exception& e) {
         return e.what();

@@ -205,6 +205,19 @@ private:
     // UI frames: the panels in use, nothing the render reads changed (see frame()).
     bool uiInput_ = false, needRender_ = false;
     Settings renderedSettings_;
+    // What the viewport's view texture was last drawn from (a UI frame reuses it).
+    struct ViewportKey {
+        BufferViewParams params;
+        GLuint source = 0, split = 0;
+        int layer = 0, splitLayer = 0, vis = 0, level = 0, sourceW = 0, sourceH = 0, width = 0, height = 0;
+        uint64_t frame = 0;
+        int pathTraceSamples = -1;
+        uint64_t pathTraceGeneration = 0;
+        int reference = 0;
+    };
+    ViewportKey viewportKey_;
+    GLuint viewportTex_ = 0;
+    int referenceLoads_ = 0;
     size_t uiOnlyFrames_ = 0, idleFrames_ = 0;
     int stillFrames_ = 0;              // rendered frames since anything the render reads changed
     uint64_t lastProbeUpdates_ = 0;

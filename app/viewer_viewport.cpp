@@ -49,7 +49,33 @@ void Viewer::drawViewport() {
             p.texelsPerPixel = 1.0f;
             p.origin = glm::vec2(0.0f);
         }
-        const GLuint tex = drawView(0, src, split.valid() ? &split : nullptr, p, magnify ? int(sw) : ow, magnify ? int(sh) : oh);
+        // The same inputs as the last drawing (a UI frame: nothing rendered since): its texture again, not redrawn.
+        ViewportKey key;
+        key.params = p;
+        key.source = src.texture;
+        key.split = split.valid() ? split.texture : 0;
+        key.level = src.level;
+        key.layer = src.layer;
+        key.splitLayer = split.layer;
+        key.vis = int(src.vis);
+        key.sourceW = src.levelWidth();
+        key.sourceH = src.levelHeight();
+        key.width = magnify ? int(sw) : ow;
+        key.height = magnify ? int(sh) : oh;
+        key.frame = renderer_->frameIndex();
+        key.pathTraceSamples = ptMode == ui::PathTraceMode::Off ? -1 : ptSnap_.samples;
+        key.pathTraceGeneration = ptMode == ui::PathTraceMode::Off ? 0 : ptSnap_.generation;
+        key.reference = referenceLoads_;
+        const bool same = viewportTex_ && std::memcmp(&key.params, &viewportKey_.params, sizeof(key.params)) == 0 &&
+                          key.source == viewportKey_.source && key.split == viewportKey_.split && key.level == viewportKey_.level &&
+                          key.layer == viewportKey_.layer && key.splitLayer == viewportKey_.splitLayer && key.vis == viewportKey_.vis &&
+                          key.sourceW == viewportKey_.sourceW && key.sourceH == viewportKey_.sourceH &&
+                          key.width == viewportKey_.width && key.height == viewportKey_.height && key.frame == viewportKey_.frame &&
+                          key.pathTraceSamples == viewportKey_.pathTraceSamples &&
+                          key.pathTraceGeneration == viewportKey_.pathTraceGeneration && key.reference == viewportKey_.reference;
+        const GLuint tex = same ? viewportTex_ : drawView(0, src, split.valid() ? &split : nullptr, p, key.width, key.height);
+        viewportKey_ = key;
+        viewportTex_ = renderError_.empty() ? tex : 0;
         glTextureParameteri(tex, GL_TEXTURE_MAG_FILTER, magnify ? GL_LINEAR : GL_NEAREST);
         glTextureParameteri(tex, GL_TEXTURE_MIN_FILTER, magnify ? GL_LINEAR : GL_NEAREST);
         ImVec2 q0(vpX0_, vpY0_), q1(vpX1_, vpY1_);
