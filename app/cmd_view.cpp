@@ -21,6 +21,10 @@ CommandRegistrar registrar("view", "Interactive viewer: Blender-style navigation
     sub.add_option("--script", opt->scriptPath, "Run timed actions from FILE and exit at its end (see ui/script.h)");
     sub.add_option("--shaders", opt->shaderDir, "Shader folder (default: the source tree's shaders/); edits reload live");
     sub.add_option("--screenshots", opt->screenshotDir, "Folder for F12 screenshots (default: $XDG_PICTURES_DIR/deepgi, ~/Pictures/deepgi or $XDG_DATA_HOME/deepgi/screenshots)");
+    sub.add_option("--target-frame-ms", opt->targetFrameMs,
+                   "Dynamic resolution: while the camera moves, render at the fraction of the viewport that holds this "
+                   "frame time (0 = always full size; default: the last one, else 100 on software GL, 16.7 on a GPU)")
+        ->check(CLI::Range(0.0, 10000.0));
     sub.add_flag("--fresh", opt->fresh, "Ignore the saved viewer state and do not write it");
     settings->add(sub);
     return [opt, size, settings]() {

@@ -1,6 +1,7 @@
-// The viewer: GLFW window and GL context, main loop, the services the panels use, and the viewport's drawing.
-// Input is in viewer_input.cpp, files (state, captures) in viewer_capture.cpp, the script host in
-// viewer_script_host.cpp; panels and the script interpreter in ui/.
+// The viewer: GLFW window and GL context, main loop (with the dynamic resolution's and the UI frames' choices), the
+// services the panels use. The viewport's drawing is in viewer_viewport.cpp, input in viewer_input.cpp, files
+// (state, captures) in viewer_capture.cpp, the script host in viewer_script_host.cpp; panels and the script
+// interpreter in ui/.
 #ifdef DEEPGI_HAVE_UI
 #include "app/viewer_app.h"
 
@@ -9,6 +10,7 @@
 #include <imgui_impl_opengl3.h>
 
 #include "renderer/core/image_io.h"
+#include "renderer/probes/probe_volume.h"
 #include "renderer/scene/scene_loader.h"
 
 #include <algorithm>
@@ -61,6 +63,7 @@ bool Viewer::init() {
     settings_ = opt_.settings;
     if (opt_.screenshotDir.empty()) opt_.screenshotDir = defaultScreenshotDir();  // never the current folder
     loadState();
+    if (opt_.targetFrameMs >= 0.0) view_.targetFrameMs = float(opt_.targetFrameMs);  // the command line wins
     if (!opt_.scriptPath.empty()) script_ = ui::ScriptRunner(opt_.scriptPath, ui::parseViewerScript(opt_.scriptPath));  // fail before opening a window
 
     glfwSetErrorCallback([](int code, const char* msg) { std::fprintf(stderr, "deepgi view: GLFW error %d: %s\n", code, msg); });
@@ -86,12 +89,13 @@ bool Viewer::init() {
     }
     glClampColor(GL_CLAMP_READ_COLOR, GL_FALSE);  // raw SNORM/float readbacks
 
-    // Our callbacks first: the ImGui backend chains to them.
+    // Our callbacks first: the ImGui backend chains to them. They queue; the frame handles the queue in order.
+    using K = InputEvent::Kind;
     glfwSetWindowUserPointer(window_, this);
-    glfwSetMouseButtonCallback(window_, [](GLFWwindow* w, int b, int a, int m) { self(w)->onMouseButton(b, a, m, false); });
-    glfwSetCursorPosCallback(window_, [](GLFWwindow* w, double x, double y) { self(w)->onCursor(x, y, false); });
-    glfwSetScrollCallback(window_, [](GLFWwindow* w, double, double dy) { self(w)->onScroll(dy, false); });
-    glfwSetKeyCallback(window_, [](GLFWwindow* w, int k, int, int a, int m) { self(w)->onKey(k, a, m, false); });
+    glfwSetMouseButtonCallback(window_, [](GLFWwindow* w, int b, int a, int m) { self(w)->queueInput({K::Button, b, a, m}); });
+    glfwSetCursorPosCallback(window_, [](GLFWwindow* w, double x, double y) { self(w)->queueInput({K::Cursor, 0, 0, 0, x, y}); });
+    glfwSetScrollCallback(window_, [](GLFWwindow* w, double, double dy) { self(w)->queueInput({K::Scroll, 0, 0, 0, 0.0, dy}); });
+    glfwSetKeyCallback(window_, [](GLFWwindow* w, int k, int, int a, int m) { self(w)->queueInput({K::Key, k, a, m}); });
 
     IMGUI_CHECKVERSION();
     ImGui::CreateContext();
@@ -120,6 +124,7 @@ bool Viewer::init() {
     const char* glRenderer = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
     const bool software = glRenderer && (std::strstr(glRenderer, "llvmpipe") || std::strstr(glRenderer, "softpipe"));
     ro.timing = software ? TimingMode::WallClock : TimingMode::GpuQueries;
+    softwareGl_ = software;
     renderer_ = std::make_unique<Renderer>(ro);
     views_[0] = std::make_unique<BufferViewPass>();
     views_[1] = std::make_unique<BufferViewPass>();
@@ -222,6 +227,7 @@ std::string Viewer::loadReference(const std::string& path) {
         glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
         glTextureSubImage2D(refTex_.id(), 0, 0, 0, img.width, img.height, GL_RGBA, GL_FLOAT, rgba.pixels.data());
         refImage_ = std::move(img);
+        ++referenceLoads_;
         return "";
     } catch (const std::exception& e) {
         return e.what();
@@ -230,10 +236,23 @@ std::string Viewer::loadReference(const std::string& path) {
 
 // ---- frame -------------------------------------------------------------------------------------------------
 
+double Viewer::targetFrameMs() const {
+    if (view_.targetFrameMs >= 0.0f) return double(view_.targetFrameMs);
+    return softwareGl_ ? 100.0 : 1000.0 / 60.0;
+}
+
 void Viewer::frame() {
     const double t = nowSeconds();
+    const double frameMs = (t - lastFrameTime_) * 1000.0;  // the previous frame, whole: input, render, UI, swap
     const double dt = std::min(t - lastFrameTime_, 0.25);
     lastFrameTime_ = t;
+    FrameSample last = lastSample_;
+    last.frameMs = frameMs;
+    if (lastRenderW_ > 0) {
+        recentFrames_.push_back({frameMs, last.renderMs, lastRenderW_, lastRenderH_, lastMoving_, lastRendered_});
+        if (recentFrames_.size() > 120) recentFrames_.pop_front();
+    }
+    lastSample_.valid = true;  // this frame, unless something below makes it untypical
 
     // Hot reload: poll the mtimes of every file the programs used, twice a second.
     if (t - lastPoll_ > 0.5) {
@@ -242,10 +261,15 @@ void Viewer::frame() {
         if (n > 0) {
             setStatus("reloaded " + std::to_string(n) + " shader program(s)");
             renderError_.clear();
+            lastSample_.valid = false;
+            needRender_ = true;
         }
     }
+    uiInput_ = false;
     script_.step(*this, t);
     if (script_.finished()) quit_ = true;
+    uiInput_ = uiInput_ || !uiDrag_.empty();
+    handleInput();
     updateFly(dt);
 
     int fbw = 0, fbh = 0, ww = 0, wh = 0;
@@ -253,6 +277,8 @@ void Viewer::frame() {
     glfwGetWindowSize(window_, &ww, &wh);
     if (fbw <= 0 || fbh <= 0 || ww <= 0 || wh <= 0) {  // minimised
         renderer_->resize(0, 0);
+        lastRenderW_ = 0;
+        lastSample_.valid = false;
         return;
     }
     const float scaleX = float(fbw) / float(ww), scaleY = float(fbh) / float(wh);
@@ -265,11 +291,58 @@ void Viewer::frame() {
     inspX1_ = mainW;
     vpY0_ = headerH_;
     vpY1_ = float(wh);
-    const int rw = std::max(1, int((vpX1_ - vpX0_) * scaleX * view_.resolutionScale));
-    const int rh = std::max(1, int((vpY1_ - vpY0_) * scaleY * view_.resolutionScale));
+    fullW_ = std::max(1, int((vpX1_ - vpX0_) * scaleX * view_.resolutionScale));
+    fullH_ = std::max(1, int((vpY1_ - vpY0_) * scaleY * view_.resolutionScale));
+
+    // Dynamic resolution: the camera moved in the last half second (and the last 3 frames) = moving.
+    const Camera cam = ctl_.camera(scene_->bounds);
+    const bool changed = haveLastCamera_ &&
+                         (cam.cameraToWorld != lastCamera_.cameraToWorld || cam.perspective != lastCamera_.perspective ||
+                          cam.yfov != lastCamera_.yfov || cam.orthoHalfHeight != lastCamera_.orthoHalfHeight);
+    lastCamera_ = cam;
+    haveLastCamera_ = true;
+    if (changed) {
+        lastMotionTime_ = t;
+        framesStill_ = 0;
+    } else if (framesStill_ < (1 << 20)) {
+        ++framesStill_;
+    }
+    moving_ = framesStill_ < 3 || t - lastMotionTime_ < 0.5;
+    dynres_.setTarget(targetFrameMs());
+    // A UI frame: while the panels are being used (pointer over them, a text field typing) and nothing the render
+    // depends on changed, the frame is not rendered again: the UI answers at its own cost, the viewport keeps the
+    // last frame (still camera: the same image). Anything that changes the render renders the next frame.
+    const bool unchanged = !moving_ && !needRender_ && convergePending_ == 0 && renderer_->frameIndex() > 0 &&
+                           settings_ == renderedSettings_ && renderer_->width() == fullW_ && renderer_->height() == fullH_ &&
+                           renderError_.empty() && renderer_->shaders().errors().empty();
+    // Converged: still and unchanged for as many frames as the temporal history needs to fall under 1 % (and the
+    // probes no longer updating): the frames after it would be the same image, so they only draw the UI.
+    const uint64_t probeUpdates = renderer_->probeVolume() ? renderer_->probeVolume()->updateCount() : 0;
+    if (!unchanged || probeUpdates != lastProbeUpdates_ || view_.pathTrace != ui::PathTraceMode::Off) stillFrames_ = 0;
+    lastProbeUpdates_ = probeUpdates;
+    const float alpha = std::clamp(settings_.hysteresis, 0.0f, 0.995f);
+    const int convergeFrames = 4 + (settings_.temporal && alpha > 0.0f ? int(std::ceil(std::log(0.01) / std::log(double(alpha)))) : 0);
+    converged_ = stillFrames_ >= convergeFrames;
+    const bool uiOnly = unchanged && (uiInput_ || converged_);
+    needRender_ = false;
+    lastRendered_ = !uiOnly;
+    lastMoving_ = moving_;
+    if (uiOnly) {
+        ++uiOnlyFrames_;
+        if (converged_) ++idleFrames_;
+        if (view_.pathTrace != ui::PathTraceMode::Off) afterRender();  // its samples keep arriving
+        lastSample_.valid = false;
+        lastSample_.renderMs = 0.0;
+        drawFrameUi(fbw, fbh);
+        return;
+    }
+    const int step = dynres_.next(moving_, last);
+    const int rw = std::max(1, int(std::lround(fullW_ * double(step) / DynamicResolution::kSteps)));
+    const int rh = std::max(1, int(std::lround(fullH_ * double(step) / DynamicResolution::kSteps)));
+    if (rw != renderer_->width() || rh != renderer_->height() || convergePending_ > 0) lastSample_.valid = false;
 
     renderer_->resize(rw, rh);
-    renderer_->setCamera(ctl_.camera(scene_->bounds));
+    renderer_->setCamera(cam);
     const double r0 = nowSeconds();
     try {
         // `converge N` (script or Settings panel): N - 1 frames now, the Nth below as usual.
@@ -281,9 +354,19 @@ void Viewer::frame() {
         renderError_ = e.what();
         convergePending_ = 0;
     }
-    profiler_.record(renderer_->timings(), (nowSeconds() - r0) * 1000.0);
+    const double renderMs = (nowSeconds() - r0) * 1000.0;
+    renderedSettings_ = settings_;
+    ++stillFrames_;
+    profiler_.record(renderer_->timings(), renderMs);
+    lastSample_.renderMs = renderMs;
+    lastSample_.step = step;
+    lastRenderW_ = renderer_->width();
+    lastRenderH_ = renderer_->height();
     afterRender();
+    drawFrameUi(fbw, fbh);
+}
 
+void Viewer::drawFrameUi(int fbw, int fbh) {
     ImGui_ImplOpenGL3_NewFrame();
     ImGui_ImplGlfw_NewFrame();
     applyScriptPointer();
@@ -331,73 +414,6 @@ void Viewer::drawUi() {
     ui::drawShaderErrors(errors, vpX0_, vpY1_ - 26.0f, vpX1_ - vpX0_);
 }
 
-void Viewer::drawViewport() {
-    ImGuiIO& io = ImGui::GetIO();
-    // The viewport: the chosen buffer (or the path tracer, alone or split against the frame), fitted, aspect kept.
-    BufferSource src = source(view_.buffer, 0), split;
-    if (!src.valid()) src = source("Final Display", 0);
-    const ui::PathTraceMode ptMode = pathTraceMode();
-    if (ptMode == ui::PathTraceMode::Full) src = source(ui::kPathTraceName, 0);
-    if (ptMode == ui::PathTraceMode::Split) {
-        src = source("Final Radiance", 0);  // the same display mapping as the path tracer's radiance
-        split = source(ui::kPathTraceName, 0);
-    }
-    const float vw = vpX1_ - vpX0_, vh = vpY1_ - vpY0_;
-    const int ow = std::max(1, int(vw * io.DisplayFramebufferScale.x)), oh = std::max(1, int(vh * io.DisplayFramebufferScale.y));
-    if (src.valid()) {
-        BufferViewParams p = view_.params;
-        const float sw = float(src.levelWidth()), sh = float(src.levelHeight());
-        const float tpp = std::max(sw / float(ow), sh / float(oh));  // texels per output pixel (fit)
-        p.texelsPerPixel = tpp;
-        p.origin = glm::vec2(sw, sh) * 0.5f - glm::vec2(float(ow), float(oh)) * 0.5f * tpp;
-        p.grid = false;
-        const Camera& c = renderer_->camera();
-        p.znear = c.znear;
-        p.zfar = c.zfar;
-        p.perspective = c.perspective;
-        p.background = glm::vec4(0.16f, 0.16f, 0.17f, 1.0f);
-        if (ptMode != ui::PathTraceMode::Off) {
-            p.mode = ViewMode::Radiance;
-            p.exposureEV += settings_.exposure;  // the frame's exposure, so both halves read as the final image
-            p.splitX = view_.pathTraceSplit;
-        }
-        const GLuint tex = drawView(0, src, split.valid() ? &split : nullptr, p, ow, oh);
-        ImGui::GetBackgroundDrawList()->AddImage((ImTextureID)(intptr_t)tex, ImVec2(vpX0_, vpY0_), ImVec2(vpX1_, vpY1_),
-                                                 ImVec2(0, 1), ImVec2(1, 0));
-    }
-
-    // Overlay text: view name, sizes, timing, status; the path tracer's figures.
-    ImDrawList* dl = ImGui::GetForegroundDrawList();
-    auto shadowed = [&](float x, float y, ImU32 col, const std::string& text) {
-        dl->AddText(ImVec2(x + 1, y + 1), IM_COL32(0, 0, 0, 200), text.c_str());
-        dl->AddText(ImVec2(x, y), col, text.c_str());
-    };
-    const float fm = profiler_.cpuFrameMs.empty() ? 0.0f : profiler_.cpuFrameMs.back();
-    char line[256];
-    std::snprintf(line, sizeof(line), "%s | %s | %dx%d | %.0f ms", view_.viewName.c_str(),
-                  ptMode == ui::PathTraceMode::Off ? view_.buffer.c_str() : "Path trace this view", renderer_->width(),
-                  renderer_->height(), double(fm));
-    shadowed(vpX0_ + 8, vpY0_ + 6, IM_COL32(235, 235, 235, 255), line);
-    if (view_.pathTrace != ui::PathTraceMode::Off) {  // the status shows before the first samples arrive
-        // One overlay line per part ("path traced N spp", "whole: ...", "indirect: ...") so that narrow views keep them.
-        const std::string fig = pathTraceFiguresLine();
-        float y = vpY0_ + 6 + ImGui::GetTextLineHeightWithSpacing();
-        for (size_t from = 0; from < fig.size();) {
-            const size_t bar = fig.find(" | ", from);
-            shadowed(vpX0_ + 8, y, IM_COL32(170, 230, 255, 255), fig.substr(from, bar == std::string::npos ? std::string::npos : bar - from));
-            y += ImGui::GetTextLineHeightWithSpacing();
-            from = bar == std::string::npos ? fig.size() : bar + 3;
-        }
-        if (ptMode == ui::PathTraceMode::Split) {
-            const float sx = vpX0_ + vw * view_.pathTraceSplit;
-            shadowed(sx - ImGui::CalcTextSize("real time").x - 8, vpY1_ - 40, IM_COL32(235, 235, 235, 255), "real time");
-            shadowed(sx + 8, vpY1_ - 40, IM_COL32(235, 235, 235, 255), "path traced");
-        }
-    }
-    if (!view_.status.empty() && nowSeconds() - statusTime_ < 8.0)
-        shadowed(vpX0_ + 8, vpY1_ - 22, IM_COL32(255, 230, 140, 255), view_.status);
-}
-
 void Viewer::drawSidebar(float x0, float height) {
     ui::SidebarModel m;
     m.scenePath = scene_->sourcePath;
@@ -411,6 +427,7 @@ void Viewer::drawSidebar(float x0, float height) {
     m.memory = renderer_->textures().memoryReport();
     m.width = renderer_->width();
     m.height = renderer_->height();
+    m.autoTargetFrameMs = softwareGl_ ? 100.0f : 1000.0f / 60.0f;
     pipeline_ = pipelineGraph(*renderer_, settings_);
     m.pipeline = &pipeline_;
     ui::SidebarState& st = sidebar_;
@@ -425,6 +442,12 @@ void Viewer::drawSidebar(float x0, float height) {
     st.yfov = ctl_.yfov;
     const ui::SidebarActions a = ui::drawSidebar(m, st, x0, height);
 
+    needRender_ = needRender_ || a.settings.resetHistory || a.settings.convergeFrames > 0 || !a.pipeline.showTexture.empty() ||
+                  a.frameAll || a.camera >= 0 || a.projectionChanged || a.fovChanged || a.reloadShaders || a.capture;
+    if (a.settings.changed || a.pipeline.settingsChanged) {  // a slider dragged: the render follows like a motion
+        lastMotionTime_ = nowSeconds();
+        framesStill_ = 0;
+    }
     if (a.settings.resetHistory) renderer_->resetHistory();
     if (a.settings.convergeFrames > 0) {
         convergePending_ += a.settings.convergeFrames;
@@ -451,7 +474,9 @@ int Viewer::run() {
         return 1;
     }
     while (!glfwWindowShouldClose(window_) && !quit_) {
+        // Minimised, or converged with no script to play: sleep until an event (or the shader poll's next turn).
         if (glfwGetWindowAttrib(window_, GLFW_ICONIFIED)) glfwWaitEventsTimeout(0.1);
+        else if (converged_ && !script_.active()) glfwWaitEventsTimeout(0.25);
         else glfwPollEvents();
         frame();
     }

@@ -3,6 +3,7 @@
 // and the state file, the script host). Panels and the script interpreter are in ui/.
 #ifdef DEEPGI_HAVE_UI
 #include "app/camera_controller.h"
+#include "app/dynamic_resolution.h"
 #include "app/viewer_path_trace.h"
 #include "app/viewer.h"
 #include "renderer/core/image_io.h"
@@ -65,6 +66,17 @@ public:
     void scriptDumpFigures(const std::string& path) override;
     void scriptReload() override;
     void scriptConverge(int frames) override { convergePending_ += frames; }
+    void scriptStats(const std::string& path) override;
+
+    // One input event as GLFW delivered it (or the script made it): queued by the callbacks, handled in order at
+    // the start of the next frame, before its render, so that every press of a frame counts.
+    struct InputEvent {
+        enum class Kind { Button, Cursor, Scroll, Key } kind = Kind::Key;
+        int code = 0, action = 0, mods = 0;  // button or key, GLFW_PRESS/RELEASE, modifiers
+        double x = 0.0, y = 0.0;             // cursor position, or the wheel's notches in y
+        bool fromScript = false;
+    };
+    void queueInput(const InputEvent& e) { input_.push_back(e); }
 
     // Input, from GLFW callbacks or the script (fromScript bypasses ImGui's capture flags).
     void onMouseButton(int button, int action, int mods, bool fromScript);
@@ -80,8 +92,12 @@ private:
     void saveState();
     void frame();
     void drawUi();
+    void drawFrameUi(int fbw, int fbh);  // the UI over the last rendered frame, then the swap
     void drawSidebar(float x0, float height);
     void updateFly(double dt);
+    void handleInput();  // the queued events, in arrival order
+    double targetFrameMs() const;  // the viewport's setting, or its automatic value (software GL or not)
+    void renderFullSize(int frames);  // at the whole viewport's size now (a capture of a moving view)
     void cut() { renderer_->resetHistory(); }
     void useSceneCamera(int index);
     bool inViewport(double x, double y) const {
@@ -164,13 +180,55 @@ private:
     glm::dvec2 scriptWheelAt_{0.0};
     bool quit_ = false;
     double lastFrameTime_ = 0.0;
+    // Input queue and the fly keys' state from their events (a tap within one frame still moves).
+    std::deque<InputEvent> input_;
+    unsigned flyHeld_ = 0, flyPressed_ = 0;
+    size_t inputEvents_ = 0, keyPresses_ = 0;
+    // Dynamic resolution: the camera's motion, the step chosen, the last frames' times.
+    bool softwareGl_ = false;
+    DynamicResolution dynres_;
+    Camera lastCamera_;
+    bool haveLastCamera_ = false;
+    double lastMotionTime_ = -1e9;
+    int framesStill_ = 1 << 20;
+    bool moving_ = false;
+    int fullW_ = 0, fullH_ = 0;        // the viewport in framebuffer pixels (times the manual resolution scale)
+    FrameSample lastSample_;           // the frame being timed: its render time, step and whether to learn from it
+    struct FrameRecord {
+        double frameMs, renderMs;
+        int width, height;
+        bool moving, rendered;
+    };
+    std::deque<FrameRecord> recentFrames_;
+    int lastRenderW_ = 0, lastRenderH_ = 0;
+    bool lastMoving_ = false, lastRendered_ = false;
+    // UI frames: the panels in use, nothing the render reads changed (see frame()).
+    bool uiInput_ = false, needRender_ = false;
+    Settings renderedSettings_;
+    // What the viewport's view texture was last drawn from (a UI frame reuses it).
+    struct ViewportKey {
+        BufferViewParams params;
+        GLuint source = 0, split = 0;
+        int layer = 0, splitLayer = 0, vis = 0, level = 0, sourceW = 0, sourceH = 0, width = 0, height = 0;
+        uint64_t frame = 0;
+        int pathTraceSamples = -1;
+        uint64_t pathTraceGeneration = 0;
+        int reference = 0;
+    };
+    ViewportKey viewportKey_;
+    GLuint viewportTex_ = 0;
+    int referenceLoads_ = 0;
+    size_t uiOnlyFrames_ = 0, idleFrames_ = 0;
+    int stillFrames_ = 0;              // rendered frames since anything the render reads changed
+    uint64_t lastProbeUpdates_ = 0;
+    bool converged_ = false;           // still long enough: frames draw the UI only
 };
 
 double nowSeconds();
 // The Pipeline panel's graph from the renderer's passes, their reads/writes and last timings. The one place that
 // knows how the renderer exposes its passes (to be re-pointed at Renderer::graph() once it exists).
 ui::PipelineGraph pipelineGraph(const Renderer& renderer, const Settings& settings);
-// The path tracer renders the view at 1/kPathTraceDivisor of the frame's width and height.
+// The path tracer renders the view at 1/kPathTraceDivisor of the viewport's width and height (at full resolution).
 constexpr int kPathTraceDivisor = 4;
 
 }  // namespace deepgi

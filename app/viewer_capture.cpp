@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <ctime>
@@ -74,6 +75,8 @@ void Viewer::loadState() {
         view_.sidebar = j.value("sidebar", view_.sidebar);
         view_.emulate3Button = j.value("emulate_3_button", view_.emulate3Button);
         view_.resolutionScale = std::clamp(j.value("resolution_scale", view_.resolutionScale), 0.25f, 1.0f);
+        const float target = j.value("target_frame_ms", view_.targetFrameMs);
+        view_.targetFrameMs = std::isfinite(target) ? std::min(target, 10000.0f) : -1.0f;  // < 0: automatic
         captureBuffers_ = j.value("capture_buffers", captureBuffers_);
         inspector_.open = j.value("inspector_open", inspector_.open);
         view_.inspectorSplit = std::clamp(j.value("inspector_split", view_.inspectorSplit), ui::kMinSplit, ui::kMaxSplit);
@@ -98,6 +101,7 @@ void Viewer::saveState() {
                         {"sidebar", view_.sidebar},
                         {"emulate_3_button", view_.emulate3Button},
                         {"resolution_scale", view_.resolutionScale},
+                        {"target_frame_ms", view_.targetFrameMs},
                         {"capture_buffers", captureBuffers_},
                         {"inspector_open", inspector_.open},
                         {"inspector_split", view_.inspectorSplit}};
@@ -118,7 +122,21 @@ void Viewer::saveState() {
 
 // ---- screenshots -------------------------------------------------------------------------------------------
 
+void Viewer::renderFullSize(int frames) {
+    if (fullW_ <= 0 || (renderer_->width() == fullW_ && renderer_->height() == fullH_)) return;
+    renderer_->resize(fullW_, fullH_);
+    try {
+        for (int i = 0; i < frames; ++i) renderer_->render(settings_);
+    } catch (const std::exception& e) {
+        renderError_ = e.what();
+    }
+    lastSample_.valid = false;  // not a typical frame
+}
+
 void Viewer::capture() {
+    // A capture is of the whole viewport, also while the dynamic resolution renders less: a few frames at full
+    // size first (the temporal history starts over with the new size).
+    renderFullSize(4);
     if (renderer_->width() <= 0 || !renderer_->textures().has("Final Display")) {
         setStatus("nothing rendered yet: no screenshot");
         lastCaptureFailed_ = true;

@@ -12,6 +12,35 @@ namespace deepgi {
 
 // ---- input -------------------------------------------------------------------------------------------------
 
+namespace {
+// The fly keys, as bits of Viewer::flyHeld_ / flyPressed_.
+constexpr int kFlyKeys[] = {GLFW_KEY_W, GLFW_KEY_S, GLFW_KEY_D, GLFW_KEY_A, GLFW_KEY_E, GLFW_KEY_Q};
+int flyBit(int key) {
+    for (int i = 0; i < 6; ++i)
+        if (kFlyKeys[i] == key) return 1 << i;
+    return 0;
+}
+}  // namespace
+
+void Viewer::handleInput() {
+    // Events queued since the last frame (GLFW callbacks during glfwPollEvents, the script's keys and drags), in
+    // order: a key pressed and released between two frames is handled like any other.
+    while (!input_.empty()) {
+        const InputEvent e = input_.front();
+        input_.pop_front();
+        ++inputEvents_;
+        // Real input the panels take (pointer over a window, a text field typing) is UI input: see frame().
+        if (!e.fromScript && imguiReady_)
+            uiInput_ = uiInput_ || (e.kind == InputEvent::Kind::Key ? ImGui::GetIO().WantCaptureKeyboard : ImGui::GetIO().WantCaptureMouse);
+        switch (e.kind) {
+            case InputEvent::Kind::Button: onMouseButton(e.code, e.action, e.mods, e.fromScript); break;
+            case InputEvent::Kind::Cursor: onCursor(e.x, e.y, e.fromScript); break;
+            case InputEvent::Kind::Scroll: onScroll(e.y, e.fromScript); break;
+            case InputEvent::Kind::Key: onKey(e.code, e.action, e.mods, e.fromScript); break;
+        }
+    }
+}
+
 void Viewer::onMouseButton(int button, int action, int mods, bool fromScript) {
     const bool captured = !fromScript && imguiReady_ && ImGui::GetIO().WantCaptureMouse;
     if (view_.flyMode) {
@@ -63,7 +92,12 @@ void Viewer::onScroll(double dy, bool fromScript) {
 }
 
 void Viewer::onKey(int key, int action, int mods, bool fromScript) {
+    if (view_.flyMode && flyBit(key)) {  // held from press to release; a press always moves at least one frame
+        if (action == GLFW_PRESS) flyHeld_ |= unsigned(flyBit(key)), flyPressed_ |= unsigned(flyBit(key));
+        if (action == GLFW_RELEASE) flyHeld_ &= ~unsigned(flyBit(key));
+    }
     if (action != GLFW_PRESS) return;
+    ++keyPresses_;
     if (!fromScript && imguiReady_ && ImGui::GetIO().WantCaptureKeyboard) return;
     const bool ctrl = mods & GLFW_MOD_CONTROL, shift = mods & GLFW_MOD_SHIFT;
     if (view_.flyMode) {
@@ -96,6 +130,7 @@ void Viewer::onKey(int key, int action, int mods, bool fromScript) {
         case GLFW_KEY_F5: {
             const int n = renderer_->shaders().reloadAll();
             setStatus("reloaded " + std::to_string(n) + " shader programs");
+            needRender_ = true;
             break;
         }
         case GLFW_KEY_F12: capture(); break;
@@ -106,9 +141,14 @@ void Viewer::onKey(int key, int action, int mods, bool fromScript) {
 }
 
 void Viewer::updateFly(double dt) {
-    if (!view_.flyMode) return;
+    const unsigned keys = flyHeld_ | flyPressed_;
+    flyPressed_ = 0;
+    if (!view_.flyMode) {
+        flyHeld_ = 0;
+        return;
+    }
     glm::vec3 d(0.0f);
-    auto down = [&](int k) { return glfwGetKey(window_, k) == GLFW_PRESS; };
+    auto down = [&](int k) { return (keys & unsigned(flyBit(k))) != 0; };
     if (down(GLFW_KEY_W)) d.z += 1.0f;
     if (down(GLFW_KEY_S)) d.z -= 1.0f;
     if (down(GLFW_KEY_D)) d.x += 1.0f;
@@ -116,8 +156,8 @@ void Viewer::updateFly(double dt) {
     if (down(GLFW_KEY_E)) d.y += 1.0f;
     if (down(GLFW_KEY_Q)) d.y -= 1.0f;
     float speed = flySpeed_ * float(dt);
-    if (down(GLFW_KEY_LEFT_SHIFT)) speed *= 4.0f;
-    if (down(GLFW_KEY_LEFT_ALT)) speed *= 0.25f;
+    if (glfwGetKey(window_, GLFW_KEY_LEFT_SHIFT) == GLFW_PRESS) speed *= 4.0f;
+    if (glfwGetKey(window_, GLFW_KEY_LEFT_ALT) == GLFW_PRESS) speed *= 0.25f;
     if (d != glm::vec3(0.0f)) ctl_.moveEye(d * speed);
 }
 

@@ -181,7 +181,8 @@ void Viewer::afterRender() {
     }
     if (renderer_->width() <= 0) return;
     if (!pathTrace_) pathTrace_ = std::make_unique<ViewerPathTrace>(scene_);
-    const int w = std::max(1, renderer_->width() / kPathTraceDivisor), h = std::max(1, renderer_->height() / kPathTraceDivisor);
+    // The whole viewport's size, not the dynamic resolution's: a motion's smaller frames do not restart it twice.
+    const int w = std::max(1, fullW_ / kPathTraceDivisor), h = std::max(1, fullH_ / kPathTraceDivisor);
     pathTrace_->request(renderer_->camera(), settings_, w, h);
     ViewerPathTrace::Snapshot snap;
     if (!pathTrace_->latest(snap, ptSnap_.samples, ptSnap_.generation)) return;

@@ -3,15 +3,18 @@
 #ifdef DEEPGI_HAVE_UI
 #include "app/viewer_app.h"
 
+#include <nlohmann/json.hpp>
+
 #include <algorithm>
 #include <fstream>
 #include <stdexcept>
 
 namespace deepgi {
 
+// The script's keys and viewport drags take the same queue as GLFW's events (handled right after the script's step).
 void Viewer::scriptKey(int key, int mods) {
-    onKey(key, GLFW_PRESS, mods, true);
-    onKey(key, GLFW_RELEASE, mods, true);
+    queueInput({InputEvent::Kind::Key, key, GLFW_PRESS, mods, 0.0, 0.0, true});
+    queueInput({InputEvent::Kind::Key, key, GLFW_RELEASE, mods, 0.0, 0.0, true});
 }
 
 void Viewer::scriptDrag(int button, glm::dvec2 from, glm::dvec2 to, int mods) {
@@ -23,13 +26,15 @@ void Viewer::scriptDrag(int button, glm::dvec2 from, glm::dvec2 to, int mods) {
         uiDrag_.push_back({to, false});
         return;
     }
-    onCursor(from.x, from.y, true);
-    onMouseButton(button, GLFW_PRESS, mods, true);
-    for (int i = 1; i <= 8; ++i) onCursor(from.x + (to.x - from.x) * i / 8.0, from.y + (to.y - from.y) * i / 8.0, true);
-    onMouseButton(button, GLFW_RELEASE, mods, true);
+    using K = InputEvent::Kind;
+    queueInput({K::Cursor, 0, 0, 0, from.x, from.y, true});
+    queueInput({K::Button, button, GLFW_PRESS, mods, 0.0, 0.0, true});
+    for (int i = 1; i <= 8; ++i) queueInput({K::Cursor, 0, 0, 0, from.x + (to.x - from.x) * i / 8.0, from.y + (to.y - from.y) * i / 8.0, true});
+    queueInput({K::Button, button, GLFW_RELEASE, mods, 0.0, 0.0, true});
 }
 
 void Viewer::scriptPointer(glm::dvec2 at, int button, bool down) {
+    uiInput_ = true;  // the script's pointer is the UI's (a click on the viewport starts no drag)
     scriptPointerSet_ = true;
     scriptPointerAt_ = at;
     if (button >= 0) {
@@ -147,7 +152,45 @@ void Viewer::scriptDumpFigures(const std::string& path) {
     if (!out) throw std::runtime_error("cannot write " + path);
 }
 
-void Viewer::scriptReload() { renderer_->shaders().reloadAll(); }
+void Viewer::scriptReload() {
+    renderer_->shaders().reloadAll();
+    needRender_ = true;
+}
+
+void Viewer::scriptStats(const std::string& path) {
+    int ww = 0, wh = 0;
+    glfwGetWindowSize(window_, &ww, &wh);
+    nlohmann::json frames = nlohmann::json::array(), frameMs = nlohmann::json::array();
+    for (const auto& f : recentFrames_) {  // oldest first
+        frames.push_back({{"frame_ms", f.frameMs}, {"render_ms", f.renderMs}, {"width", f.width}, {"height", f.height},
+                          {"moving", f.moving}, {"rendered", f.rendered}});
+        frameMs.push_back(f.frameMs);
+    }
+    const nlohmann::json j = {
+        {"target_frame_ms", dynres_.enabled() ? dynres_.target() : 0.0},
+        {"dynamic", dynres_.enabled()},
+        {"software_gl", softwareGl_},
+        {"moving", moving_},
+        {"step", dynres_.step()},
+        {"scale", dynres_.scale()},
+        {"render", {{"width", renderer_->width()}, {"height", renderer_->height()}}},
+        {"viewport", {{"width", fullW_}, {"height", fullH_}}},  // framebuffer pixels, times the resolution slider
+        {"window", {{"width", ww}, {"height", wh}}},            // window units
+        {"frame_ms", frameMs},
+        {"frames", frames},
+        {"input_events", inputEvents_},
+        {"key_presses", keyPresses_},
+        {"ui_only_frames", uiOnlyFrames_},
+        {"idle_frames", idleFrames_},
+        {"converged", converged_},
+        {"sidebar", view_.sidebar},
+        {"inspector", inspector_.open},
+        {"fly_mode", view_.flyMode},
+        {"camera_position", {lastCamera_.position().x, lastCamera_.position().y, lastCamera_.position().z}}};
+    std::ofstream out(path);
+    out << j.dump(2) << "\n";
+    if (!out) throw std::runtime_error("cannot write " + path);
+}
 
 }  // namespace deepgi
 #endif  // DEEPGI_HAVE_UI

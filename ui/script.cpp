@@ -66,7 +66,7 @@ std::vector<ScriptAction> parseViewerScript(const std::string& path) {
         {"scroll", {1, 3}}, {"set", {1, 1}}, {"show", {1, 1}}, {"inspect", {1, 2}}, {"compare", {1, 1}},
         {"reference", {1, 1}}, {"pathtrace", {1, 1}}, {"camera", {1, 1}}, {"screenshot", {1, 1}}, {"capture", {0, 0}},
         {"panel", {1, 1}}, {"resize", {1, 1}}, {"shell", {1, 1000}}, {"profiler_csv", {1, 1}}, {"dump_errors", {1, 1}},
-        {"dump_figures", {1, 1}}, {"reload", {0, 0}}, {"converge", {1, 1}}, {"quit", {0, 0}}};
+        {"dump_figures", {1, 1}}, {"reload", {0, 0}}, {"converge", {1, 1}}, {"stats", {1, 1}}, {"quit", {0, 0}}};
     std::vector<ScriptAction> actions;
     std::string line;
     int lineNo = 0;
@@ -208,6 +208,7 @@ void ScriptRunner::step(ScriptHost& host, double now) {
             } else if (v == "dump_errors") host.scriptDumpErrors(a.args[0]);
             else if (v == "dump_figures") host.scriptDumpFigures(a.args[0]);
             else if (v == "reload") host.scriptReload();
+            else if (v == "stats") host.scriptStats(a.args[0]);
             else if (v == "converge") { host.scriptConverge(std::stoi(a.args[0])); return; }
             else if (v == "quit") { finished_ = true; return; }
         } catch (const std::exception& e) {

@@ -26,6 +26,8 @@
 //   dump_figures PATH           write the inspector's and the path tracer's error figures lines
 //   reload                      what F5 does
 //   converge N                  render N frames at once (anywhere: before the first frame it runs after it)
+//   stats PATH                  write JSON: the recent frame times (ms), the render size and scale, the viewport and
+//                               window sizes, the target frame time, whether the camera is moving, the keys handled
 //   quit                        exit now (the end of the script also exits)
 // Every failure, when parsing or while running, names FILE:LINE and says why; the viewer then exits with 1.
 #include <glm/glm.hpp>
@@ -74,6 +76,7 @@ public:
     virtual void scriptDumpFigures(const std::string& path) = 0;
     virtual void scriptReload() = 0;
     virtual void scriptConverge(int frames) = 0;
+    virtual void scriptStats(const std::string& path) = 0;
 };
 
 // Runs a parsed script, a few actions per frame: `wait`, `sleep`, `screenshot` and `click` end a frame's turn.

@@ -20,6 +20,14 @@ void drawViewTab(const SidebarModel& m, SidebarState& st, SidebarActions& act) {
     ImGui::Checkbox("Emulate 3-button mouse (Alt+left)", &st.view->emulate3Button);
     ImGui::SliderFloat("resolution", &st.view->resolutionScale, 0.25f, 1.0f, "%.2f x");
     if (ImGui::IsItemHovered()) ImGui::SetTooltip("Render at a fraction of the viewport (llvmpipe is slow)");
+    bool autoTarget = st.view->targetFrameMs < 0.0f;
+    if (ImGui::Checkbox("automatic target frame time", &autoTarget)) st.view->targetFrameMs = autoTarget ? -1.0f : m.autoTargetFrameMs;
+    if (ImGui::IsItemHovered())
+        ImGui::SetTooltip("Dynamic resolution: while the camera moves the render shrinks (down to 1/4 of the viewport)\n"
+                          "to hold the target frame time; when it stops, the whole viewport. Automatic: 100 ms on\n"
+                          "software GL, 16.7 ms on a GPU");
+    if (autoTarget) ImGui::TextDisabled("target frame time %.1f ms", double(m.autoTargetFrameMs));
+    else ImGui::SliderFloat("target frame", &st.view->targetFrameMs, 0.0f, 500.0f, st.view->targetFrameMs > 0.0f ? "%.0f ms" : "off");
     if (ImGui::Checkbox("Perspective (Numpad 5)", &st.perspective)) act.projectionChanged = true;
     float fov = glm::degrees(st.yfov);
     if (ImGui::SliderFloat("vertical fov", &fov, 10.0f, 120.0f, "%.0f deg")) {

@@ -135,6 +135,7 @@ struct ViewportState {
     bool emulate3Button = false;
     bool flyMode = false;
     float resolutionScale = 1.0f;
+    float targetFrameMs = -1.0f;           // dynamic resolution's target while moving: 0 off, < 0 automatic
     bool sidebar = true;
     std::string status;                    // bottom-left status line
     float inspectorSplit = 0.5f;           // the viewport's share of the width left of the sidebar (inspector open)
@@ -163,6 +164,7 @@ struct SidebarModel {
     size_t shaderErrors = 0;
     MemoryReport memory;
     int width = 0, height = 0;
+    float autoTargetFrameMs = 100.0f;      // what "automatic" means on this GL (software or not)
     const PipelineGraph* pipeline = nullptr;
 };
 // What it edits (pointers into the app's state) and its own state.
