@@ -8,7 +8,7 @@ uniform sampler2DArray uNormal;
 uniform sampler2DArray uEmission;
 uniform sampler2DArray uRadiance;   // Input Radiance 1/2
 uniform sampler2D uIndirect;        // Output Radiance
-uniform sampler2D uDirect;          // Direct Irradiance (layer 1)
+uniform sampler2D uDirect;          // Direct Radiance: rho/pi * shadowed E_direct of layer 1
 uniform int uHasEmission;
 uniform int uIndirectOn;
 uniform int uSeedMode;
@@ -73,7 +73,7 @@ void main() {
         if (uSeedMode != 0) {
             L = texelFetch(uRadiance, ivec3(pix, 0), 0).rgb + E * albedo;
         } else {
-            L = albedo / PI * (texelFetch(uDirect, pix, 0).rgb + E);
+            L = texelFetch(uDirect, pix, 0).rgb + albedo / PI * E;
             if (uHasEmission != 0) L += texelFetch(uEmission, ivec3(pix, 0), 0).rgb;
         }
     }

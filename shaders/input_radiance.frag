@@ -17,7 +17,7 @@ uniform int uSourceLevel;   // this draw fills mip level uSourceLevel: each texe
 #include "probe_volume.glsl"
 #endif
 layout(location = 0) out vec3 oRadiance;
-layout(location = 1) out vec4 oDirect;  // layer 1's direct irradiance (Direct Irradiance), for the composite
+layout(location = 1) out vec4 oDirect;  // layer 1's outgoing direct radiance (Direct Radiance), for the composite
 void main() {
     ivec2 pix = sourcePixel(ivec2(gl_FragCoord.xy), uSourceLevel, textureSize(uDepth, 0).xy);
     float d = texelFetch(uDepth, ivec3(pix, uLayer), 0).r;
@@ -26,7 +26,7 @@ void main() {
     vec3 n = octDecode(texelFetch(uNormal, ivec3(pix, uLayer), 0).rg);
     vec3 albedo = texelFetch(uAlbedo, ivec3(pix, uLayer), 0).rgb;
     vec3 E = directIrradiance(P, n);
-    oDirect = vec4(sanitize(E), 1.0);
+    oDirect = vec4(sanitize(albedo / PI * E), 1.0);  // radiance: below the clamp wherever the final image is
     if (uFeedback != 0 && uLayer == 0) E += (1.0 - uDamping) * texelFetch(uReprojected, radiosityPixelOfScreen(pix), 0).rgb;
 #ifdef DEEPGI_PROBES
     // Layer 2 has no gathered light of its own, nor layer 1 before there is a history: the probes give theirs.

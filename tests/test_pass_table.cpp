@@ -226,7 +226,7 @@ void fullComposite(PassTable& t) {
     t.read("Emission", "uEmission").optional();
     t.read("Input Radiance", "uRadiance").optional();
     t.read("Output Radiance", "uIndirect").optional();
-    readShadowMaps(t);
+    t.read("Direct Radiance", "uDirect").optional();
     t.write({"Fake Output", {"Fake Output"}, GL_RGBA16F, GL_TEXTURE_2D, SizeRule::screen(), 1, MemoryGroup::Extra, Visualize::Radiance, ""});
 }
 
@@ -257,7 +257,7 @@ TEST_F(GLTest, ShaderSamplingATextureOutsideTheTableIsAnError) {
             t.read("Emission", "uEmission").optional();
             t.read("Input Radiance", "uRadiance").optional();
             t.read("Output Radiance", "uIndirect").optional();
-            readShadowMaps(t);
+            t.read("Direct Radiance", "uDirect").optional();
             t.write({"Fake Output", {"Fake Output"}, GL_RGBA16F, GL_TEXTURE_2D, SizeRule::screen(), 1, MemoryGroup::Extra, Visualize::Radiance, ""});
         },
         [program = std::make_shared<gl::ProgramSlot<CompositeProgram>>()](FrameContext& ctx, gl::ShaderLibrary& lib) {

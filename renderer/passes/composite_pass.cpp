@@ -11,7 +11,7 @@ void CompositePass::table(const PipelineConfig& c, PassTable& t) const {
     t.read("Emission", "uEmission").optional(!c.emission);
     t.read("Input Radiance", "uRadiance").level(Levels::Base).optional(!c.seedComposite);  // seed formula only
     t.read("Output Radiance", "uIndirect").optional(!c.indirect);
-    t.read("Direct Irradiance", "uDirect");  // evaluated once, by the input radiance pass
+    t.read("Direct Radiance", "uDirect");  // evaluated once, by the input radiance pass
     t.write({"Final Radiance", {"Final Radiance"}, GL_RGBA16F, GL_TEXTURE_2D, SizeRule::screen(), 1, MemoryGroup::Extra,
              Visualize::Radiance, "Linear radiance of the final image (what final.exr holds)"});
     t.write({"Final Display", {"Final Display"}, GL_RGBA8, GL_TEXTURE_2D, SizeRule::screen(), 1, MemoryGroup::Extra,

@@ -26,16 +26,18 @@ void InputRadiancePass::table(const PipelineConfig& c, PassTable& t) const {
                  "Outgoing radiance of both layers (what the gather collects); layer 2 from the gather's finest tap "
                  "level (radiosity.min_mip) up, its finer levels 0"},
                 "uRadiance");
-    // Half floats: the direct light keeps 11 bits of precision (R11G11B10's 6 would put 1.5 % steps in it).
-    t.write({"Direct Irradiance", {"Direct Irradiance"}, GL_RGBA16F, GL_TEXTURE_2D, SizeRule::screen(), 1,
+    // Half floats: the direct light keeps 11 bits of precision (R11G11B10's 6 would put 1.5 % steps in it); as
+    // outgoing radiance it is bounded by the same clamp as the final image (an irradiance could pass 65504).
+    t.write({"Direct Radiance", {"Direct Radiance"}, GL_RGBA16F, GL_TEXTURE_2D, SizeRule::screen(), 1,
              MemoryGroup::Extra, Visualize::Radiance,
-             "Shadowed direct irradiance at layer 1 from every light, evaluated once (the composite reads it)"});
+             "Outgoing direct radiance of layer 1 (albedo / pi x the shadowed direct irradiance from every light), "
+             "evaluated once; the composite adds emission and indirect light"});
 }
 
 void InputRadiancePass::execute(FrameContext& ctx) {
     const RadiositySettings& s = ctx.settings;
     const bool radianceOut = ctx.config.indirect || ctx.config.seedComposite;
-    const GLuint radiance = radianceOut ? ctx.texture("Input Radiance") : 0, direct = ctx.texture("Direct Irradiance");
+    const GLuint radiance = radianceOut ? ctx.texture("Input Radiance") : 0, direct = ctx.texture("Direct Radiance");
     std::vector<std::string> defines;
     if (ctx.config.probes) defines.push_back("DEEPGI_PROBES");
     RadianceProgram& prog = radiance_.get(ctx.shaders, {"fullscreen.vert", "", "input_radiance.frag", "", defines});

@@ -3,7 +3,7 @@
 
 namespace deepgi {
 
-// The one evaluation of direct light: shadowed direct irradiance at layer 1 (Direct Irradiance, which the composite
+// The one evaluation of direct light: layer 1's outgoing direct radiance (Direct Radiance, which the composite
 // reads), and with indirect light the outgoing radiance of both layers (direct light + emission, plus last frame's
 // indirect light on layer 1: one more bounce per frame), then the rotated-grid mip chains of depth, normal and
 // radiance. Layer 2's radiance is read by the gather only from its finest tap level (radiosity.min_mip) up, whose
