@@ -47,7 +47,8 @@ TEST(Settings, JsonRoundTripAndPresets) {
     Settings q;
     applyPreset(q, "quality");
     EXPECT_EQ(q.numSamples, 30);
-    EXPECT_EQ(q.minMip, 1);
+    EXPECT_EQ(q.visibilitySteps, 8);
+    EXPECT_EQ(q.radiosityResolution, RadiosityResolution::Auto);
     EXPECT_THROW(applySettingsJson(q, nlohmann::json{{"blur.enabled", 3}}, "x.json"), std::runtime_error);
 }
 
