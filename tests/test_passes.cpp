@@ -270,6 +270,7 @@ TEST_F(GLTest, TemporalBlendFollowsFormula) {
     Renderer& r = *renderer;
     Settings s;
     s.hysteresis = 0.75f;
+    s.radiosityResolution = RadiosityResolution::Full;  // compared with Depth 1 pixel by pixel
     r.render(s);
     r.render(s);
     const glm::vec3 cur(1.0f, 2.0f, 4.0f), prev(3.0f, 0.5f, 8.0f);
