@@ -364,15 +364,7 @@ GltfLoadOptions gltfLoadOptions(const Settings& settings) {
 
 Scene loadGltf(const std::string& path, const GltfLoadOptions& options) {
     gltf::GltfReader reader(path, options);
-    try {
-        return reader.run();
-    } catch (const SceneLoadError&) {
-        throw;
-    } catch (const std::bad_alloc&) {
-        throw SceneLoadError(path + ": out of memory while loading");
-    } catch (const std::exception& e) {
-        throw SceneLoadError(path + ": " + e.what());
-    }
+    return runSceneReader(path, reader);
 }
 
 }  // namespace deepgi

@@ -413,15 +413,7 @@ Scene ObjReader::run() {
 
 Scene loadObj(const std::string& path, const GltfLoadOptions& options) {
     ObjReader reader(path, options);
-    try {
-        return reader.run();
-    } catch (const SceneLoadError&) {
-        throw;
-    } catch (const std::bad_alloc&) {
-        throw SceneLoadError(path + ": out of memory while loading");
-    } catch (const std::exception& e) {
-        throw SceneLoadError(path + ": " + e.what());
-    }
+    return runSceneReader(path, reader);
 }
 
 }  // namespace deepgi

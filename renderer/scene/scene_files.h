@@ -10,12 +10,27 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <new>
 #include <string>
 #include <vector>
 
 namespace deepgi {
 
 // "a FIFO (named pipe)" etc. for anything that is not a regular file; "" for a regular file or one that is absent.
+// Runs a loader: a failure becomes one SceneLoadError naming the file (running out of memory included).
+template <class Reader>
+Scene runSceneReader(const std::string& path, Reader& reader) {
+    try {
+        return reader.run();
+    } catch (const SceneLoadError&) {
+        throw;
+    } catch (const std::bad_alloc&) {
+        throw SceneLoadError(path + ": out of memory while loading");
+    } catch (const std::exception& e) {
+        throw SceneLoadError(path + ": " + e.what());
+    }
+}
+
 std::string nonRegularKind(const std::filesystem::path& p);
 
 // Reads the scene file `path` whole; throws SceneLoadError("<path>: <problem>") when it is absent, a directory,
