@@ -3,8 +3,8 @@
 #include "common.glsl"
 layout(triangles) in;
 layout(triangle_strip, max_vertices = 6) out;
-in VS { vec3 world; vec3 normal; vec2 uv; } vs[];
-out GS { vec3 world; vec3 normal; vec2 uv; } gs;
+in VS { vec3 world; vec3 normal; vec2 uv; vec4 tangent; } vs[];
+out GS { vec3 world; vec3 normal; vec2 uv; vec4 tangent; } gs;
 uniform int uFirstLayer;  // 0, or 1 for the second pass of depth peeling
 uniform int uLayerCount;  // 1 or 2
 void main() {
@@ -16,6 +16,7 @@ void main() {
             gs.world = vs[i].world;
             gs.normal = vs[i].normal;
             gs.uv = vs[i].uv;
+            gs.tangent = vs[i].tangent;
             gl_Position = uViewProj * vec4(vs[i].world, 1.0);
             EmitVertex();
         }

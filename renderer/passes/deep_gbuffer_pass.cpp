@@ -21,10 +21,24 @@ void DeepGBufferPass::table(const PipelineConfig& c, PassTable& t) const {
     if (c.emission)
         t.write({"Emission", {"Emission 1", "Emission 2"}, GL_R11F_G11F_B10F, GL_TEXTURE_2D_ARRAY, SizeRule::screen(), 1,
                  MemoryGroup::Extra, Visualize::Radiance, "Emitted radiance of both layers (only for scenes with emissive materials)"});
+    writeMaterialTextures(c, t);
     if (c.depthPeel)
         t.write({"Peel Depth", {"Peel Depth"}, GL_DEPTH_COMPONENT32, GL_TEXTURE_2D, SizeRule::screen(), 1,
                  MemoryGroup::Extra, Visualize::Depth, "Copy of this frame's layer-1 depth for exact depth peeling (depth_peel mode only)"},
                 "uPeelDepth");
+}
+
+// The metallic-roughness model's extras, only for scenes that have them (a Lambertian scene keeps the seed layout).
+void DeepGBufferPass::writeMaterialTextures(const PipelineConfig& c, PassTable& t) const {
+    if (c.specular)
+        t.write({"Specular", {"Specular 1", "Specular 2"}, GL_RGBA8, GL_TEXTURE_2D_ARRAY, SizeRule::screen(), 1,
+                 MemoryGroup::Extra, Visualize::Color,
+                 "GGX specular of both layers: rgb = F0 = mix(0.04, base, metallic), a = perceptual roughness (the "
+                 "composite shades layer 1's direct lights with it; 0 = no specular)"});
+    if (c.occlusion)
+        t.write({"Occlusion", {"Occlusion 1", "Occlusion 2"}, GL_R8, GL_TEXTURE_2D_ARRAY, SizeRule::screen(), 1,
+                 MemoryGroup::Extra, Visualize::Color,
+                 "The occlusion texture (x strength) of both layers: scales indirect light only (1 = none)"});
 }
 
 void DeepGBufferPass::drawScene(FrameContext& ctx, int firstLayer, int layerCount, bool peel, const char* peelDepth) {
@@ -34,12 +48,15 @@ void DeepGBufferPass::drawScene(FrameContext& ctx, int firstLayer, int layerCoun
         std::vector<std::string> defs;
         if (masked) defs.push_back("MASKED");
         if (ctx.config.emission) defs.push_back("EMISSION");
+        if (ctx.config.specular) defs.push_back("SPECULAR");
+        if (ctx.config.occlusion) defs.push_back("OCCLUSION");
         Program& prog = program_.get(ctx.shaders, {"deep_gbuffer.vert", "deep_gbuffer.geom", "deep_gbuffer.frag", "", defs});
         glUseProgram(prog.id());
         prog.firstLayer.set(firstLayer);
         prog.layerCount.set(layerCount);
         prog.minSeparation.set(g.minSeparation);
         prog.peel.set(peel);
+        prog.diffuseOnly.set(ctx.settings.diffuseOnly);
         ctx.bindSamplers(prog, {{"uPeelDepth", peelDepth}});
         ctx.scene.draw(prog.id(), masked, true);
     }
@@ -55,6 +72,8 @@ void DeepGBufferPass::execute(FrameContext& ctx) {
                                                       {GL_COLOR_ATTACHMENT0, ctx.texture("Albedo")},
                                                       {GL_COLOR_ATTACHMENT1, ctx.texture("Normal")}};
     if (ctx.config.emission) atts.push_back({GL_COLOR_ATTACHMENT2, ctx.texture("Emission")});
+    if (ctx.config.specular) atts.push_back({GL_COLOR_ATTACHMENT3, ctx.texture("Specular")});
+    if (ctx.config.occlusion) atts.push_back({GL_COLOR_ATTACHMENT4, ctx.texture("Occlusion")});
     GLuint fbo = ctx.fbos.get(atts, "deep G-buffer");
     glBindFramebuffer(GL_FRAMEBUFFER, fbo);
     glViewport(0, 0, w, h);
@@ -66,6 +85,9 @@ void DeepGBufferPass::execute(FrameContext& ctx) {
     glClearBufferfv(GL_COLOR, 0, zero);
     glClearBufferfv(GL_COLOR, 1, zero);
     if (ctx.config.emission) glClearBufferfv(GL_COLOR, 2, zero);
+    if (ctx.config.specular) glClearBufferfv(GL_COLOR, 3, zero);
+    const float noOcclusion[4] = {1, 1, 1, 1};
+    if (ctx.config.occlusion) glClearBufferfv(GL_COLOR, 4, noOcclusion);
     const float one = 1.0f;
     glClearBufferfv(GL_DEPTH, 0, &one);
 

@@ -15,6 +15,7 @@ struct TextureView {
     int width = 0, height = 0;
     WrapMode wrapS = WrapMode::Repeat, wrapT = WrapMode::Repeat;
     bool nearest = false;
+    bool srgb = true;  // rgb sRGB-decoded (colour); false: data textures, linear
 
     bool valid() const { return texels != nullptr; }
     glm::vec4 sample(glm::vec2 uv) const;
@@ -27,6 +28,7 @@ struct TracedSurface {
     const MeshPart* part = nullptr;
     const Material* material = nullptr;
     TextureView baseTexture, emissiveTexture;
+    TextureView metalRoughTexture, normalTexture, occlusionTexture;  // linear data (glTF metallic-roughness)
 
     TracedSurface() = default;
     TracedSurface(const Scene& scene, const MeshPart& p);
@@ -48,6 +50,13 @@ struct TracedSurface {
         if (baseTexture.valid()) a *= baseTexture.sample(uvAt(t, u, v)).w;
         return a;
     }
+    // The shading normal at barycentrics (u, v): n (unit, oriented to the ray's side; backFace = the hit was on the
+    // back of a double-sided material) perturbed by the normal texture, as shaders/material.glsl mappedNormal.
+    glm::vec3 mappedNormal(const glm::uvec3& t, float u, float v, const glm::vec3& n, bool backFace) const;
+    // Base colour rgb, metallic, roughness, occlusion at uv (factors x textures).
+    glm::vec3 baseColorAt(glm::vec2 uv) const;
+    glm::vec2 metallicRoughnessAt(glm::vec2 uv) const;
+    float occlusionAt(glm::vec2 uv) const;
     // A masked material's texel below its cutoff: rays pass through it.
     bool cutOut(const glm::uvec3& t, float u, float v) const {
         return material->masked() && alphaAt(t, u, v) < material->alphaCutoff;
