@@ -221,7 +221,11 @@ std::vector<std::pair<std::string, std::string>> hardViews() {
     return v;
 }
 
-HardResult runHardSuite(const HardOptions& o) {
+HardResult runHardSuite(const HardOptions& options) {
+    // The GI figures compare diffuse against diffuse: every material Lambertian (albedo = base colour) in the
+    // renderer and the references alike, whatever a scene's materials say (material.diffuse_only).
+    HardOptions o = options;
+    o.base.diffuseOnly = true;
     if (o.frames < 2 || o.timedFrames < 1 || o.timedFrames > o.frames || o.oneBounceFrames < 1)
         throw std::runtime_error("bench: need frames >= 2, 1 <= timed frames <= frames and one-bounce frames >= 1");
     const auto tStart = std::chrono::steady_clock::now();

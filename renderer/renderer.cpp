@@ -54,8 +54,8 @@ float projScale(const Camera& c, int height) {
 
 }  // namespace
 
-// Texture units 0 and 1 belong to SceneGpu's material textures (material.glsl); the pass tables get the rest.
-static constexpr int kFirstTableUnit = 2;
+// Texture units 0..4 belong to SceneGpu's material textures (material.glsl); the pass tables get the rest.
+static constexpr int kFirstTableUnit = 5;
 
 std::vector<std::unique_ptr<RenderPass>> Renderer::standardPasses() {
     // The order of this list only breaks ties: the tables decide what must run before what.
@@ -148,6 +148,8 @@ PipelineConfig Renderer::makeConfig(const Settings& s) const {
     PipelineConfig c;
     c.layer2 = s.layer2;
     c.emission = scene_->hasEmission();
+    c.specular = scene_->hasSpecular() && !s.diffuseOnly;
+    c.occlusion = scene_->hasOcclusion();
     c.indirect = s.indirect;
     c.seedComposite = s.compositeMode == CompositeMode::Seed;
     c.blur = s.blur;

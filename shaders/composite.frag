@@ -8,7 +8,10 @@ uniform sampler2DArray uNormal;
 uniform sampler2DArray uEmission;
 uniform sampler2DArray uRadiance;   // Input Radiance 1/2
 uniform sampler2D uIndirect;        // Output Radiance
-uniform sampler2D uDirect;          // Direct Radiance: rho/pi * shadowed E_direct of layer 1
+uniform sampler2D uDirect;          // Direct Radiance: rho/pi * shadowed E_direct of layer 1 (+ GGX specular)
+#ifdef OCCLUSION
+uniform sampler2DArray uOcclusion;  // the material's occlusion texture: darkens indirect light only
+#endif
 uniform int uHasEmission;
 uniform int uIndirectOn;
 uniform int uSeedMode;
@@ -70,6 +73,9 @@ void main() {
         vec3 P = worldFromDepth(vec2(pix) + 0.5, d, uInvViewProj);
         vec3 n = octDecode(texelFetch(uNormal, ivec3(pix, 0), 0).rg);
         vec3 E = uIndirectOn != 0 ? indirectAt(pix, P, n) : vec3(0.0);
+#ifdef OCCLUSION
+        E *= texelFetch(uOcclusion, ivec3(pix, 0), 0).r;
+#endif
         if (uSeedMode != 0) {
             L = texelFetch(uRadiance, ivec3(pix, 0), 0).rgb + E * albedo;
         } else {

@@ -1,10 +1,10 @@
 #version 450 core
-// Writes albedo, oct16 normal (and emission where the scene has any) for both layers. A layer-2 fragment is
+// Writes albedo, oct16 normal (and emission, specular, occlusion where the scene has any) for both layers. A layer-2 fragment is
 // discarded unless it lies at least min-separation behind layer 1: predicted from last frame's depth
 // (reprojected with the previous camera), or exact from this frame's layer 1 when depth peeling.
 #include "common.glsl"
 #include "material.glsl"
-in GS { vec3 world; vec3 normal; vec2 uv; } gs;
+in GS { vec3 world; vec3 normal; vec2 uv; vec4 tangent; } gs;
 layout(location = 0) out vec3 oAlbedo;
 layout(location = 1) out vec2 oNormal;
 #ifdef EMISSION
@@ -14,10 +14,31 @@ in vec3 gsPrevWorld;       // this surface point last frame (its object's previo
 flat in uint gsObjectId;   // node index + 1
 layout(location = 5) out uint oObjectId;
 layout(location = 6) out vec4 oMotion;  // xyz: previous - current world position (the paper's per-object change)
+#ifdef SPECULAR
+layout(location = 3) out vec4 oSpecular;  // F0 rgb, perceptual roughness
+#endif
+#ifdef OCCLUSION
+layout(location = 4) out float oOcclusion;
+#endif
+uniform int uDiffuseOnly;         // material.diffuse_only: albedo = base colour, no specular
 uniform sampler2D uLastDepth;     // last frame's layer-1 depth (predicted mode)
 uniform sampler2D uPeelDepth;     // this frame's layer-1 depth (depth-peel mode)
 uniform float uMinSeparation;
 uniform int uPeel;          // 1 = depth peeling
+
+// Albedo (the diffuse lobe: base x (1 - metallic)) and, where the scene needs them, the specular parameters and
+// the occlusion texture's value.
+void writeMaterial(vec3 base) {
+    vec2 mr = metallicRoughness(gs.uv);
+    bool diffuseOnly = uDiffuseOnly != 0 || uMetalRoughF0.w == 0.0;
+    oAlbedo = uDiffuseOnly != 0 ? base : base * (1.0 - mr.x);
+#ifdef SPECULAR
+    oSpecular = diffuseOnly ? vec4(0.0) : vec4(mix(vec3(uMetalRoughF0.z), base, mr.x), mr.y);
+#endif
+#ifdef OCCLUSION
+    oOcclusion = clamp(occlusion(gs.uv), 0.0, 1.0);
+#endif
+}
 
 void main() {
     vec4 base = baseColor(gs.uv);
@@ -45,11 +66,12 @@ void main() {
     n = (len > 1e-20 && !isnan(len)) ? n / len : normalize(cross(dFdx(gs.world), dFdy(gs.world)));
     if (!gl_FrontFacing) n = -n;  // only double-sided materials reach here with back faces
     if (any(isnan(n))) n = vec3(0.0, 1.0, 0.0);
-    oAlbedo = clamp(base.rgb, 0.0, 1.0);
+    n = mappedNormal(n, gl_FrontFacing ? gs.tangent : -gs.tangent, gs.uv);
     oNormal = octEncode(n);
     oObjectId = gsObjectId;
     vec3 motion = gsPrevWorld - gs.world;
     oMotion = vec4(any(isnan(motion)) || any(isinf(motion)) ? vec3(0.0) : motion, 0.0);
+    writeMaterial(clamp(base.rgb, 0.0, 1.0));
 #ifdef EMISSION
     oEmission = sanitizeR11G11B10(emission(gs.uv), gl_FragCoord.xy);
 #endif

@@ -3,8 +3,8 @@
 #include "common.glsl"
 layout(triangles) in;
 layout(triangle_strip, max_vertices = 6) out;
-in VS { vec3 world; vec3 normal; vec2 uv; } vs[];
-out GS { vec3 world; vec3 normal; vec2 uv; } gs;
+in VS { vec3 world; vec3 normal; vec2 uv; vec4 tangent; } vs[];
+out GS { vec3 world; vec3 normal; vec2 uv; vec4 tangent; } gs;
 in vec3 vsPrevWorld[];
 flat in uint vsObjectId[];
 out vec3 gsPrevWorld;      // the surface's position last frame (per-object motion)
@@ -22,6 +22,7 @@ void main() {
             gs.uv = vs[i].uv;
             gsPrevWorld = vsPrevWorld[i];
             gsObjectId = vsObjectId[i];
+            gs.tangent = vs[i].tangent;
             gl_Position = uViewProj * vec4(vs[i].world, 1.0);
             EmitVertex();
         }

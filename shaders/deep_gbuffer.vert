@@ -3,7 +3,8 @@
 layout(location = 0) in vec3 aPosition;
 layout(location = 1) in vec3 aNormal;
 layout(location = 2) in vec2 aUV;
-out VS { vec3 world; vec3 normal; vec2 uv; } vs;
+layout(location = 3) in vec4 aTangent;  // xyz, w = handedness (Vertex::tangent)
+out VS { vec3 world; vec3 normal; vec2 uv; vec4 tangent; } vs;
 out vec3 vsPrevWorld;     // where this vertex was last frame (its object's previous model matrix)
 flat out uint vsObjectId; // node index + 1
 void main() {
@@ -11,6 +12,7 @@ void main() {
     vs.world = (o.model * vec4(aPosition, 1.0)).xyz;
     vs.normal = mat3(o.normalMatrix) * aNormal;
     vs.uv = aUV;
+    vs.tangent = vec4(mat3(o.model) * aTangent.xyz, aTangent.w);  // tangents move with the object
     vsPrevWorld = (o.prevModel * vec4(aPosition, 1.0)).xyz;
     vsObjectId = o.id.x;
     gl_Position = vec4(vs.world, 1.0);

@@ -2,12 +2,15 @@
 // Outgoing Lambertian radiance of one deep G-buffer layer, the light the gather collects:
 //   B = Le + albedo/pi * (E_direct + (1 - damping) * w * E_indirect_last_frame)   (last term layer 1 only)
 #include "common.glsl"
+#include "brdf.glsl"
 #include "lighting.glsl"
 uniform sampler2DArray uDepth;
 uniform sampler2DArray uAlbedo;
 uniform sampler2DArray uNormal;
 uniform sampler2DArray uEmission;
 uniform sampler2D uReprojected;
+uniform sampler2DArray uSpecular;   // F0 rgb, roughness (SPECULAR: scenes with specular materials)
+uniform sampler2DArray uOcclusion;  // the occlusion texture (OCCLUSION)
 uniform int uLayer;
 uniform int uHasEmission;
 uniform int uFeedback;      // add last frame's indirect light (multi-bounce)
@@ -25,13 +28,24 @@ void main() {
     vec3 P = worldFromDepth(vec2(pix) + 0.5, d, uInvViewProj);
     vec3 n = octDecode(texelFetch(uNormal, ivec3(pix, uLayer), 0).rg);
     vec3 albedo = texelFetch(uAlbedo, ivec3(pix, uLayer), 0).rgb;
+    vec3 Ls = vec3(0.0);  // layer 1's direct specular (towards the camera: the gather treats B as Lambertian)
+#ifdef SPECULAR
+    vec4 spec = uLayer == 0 ? texelFetch(uSpecular, ivec3(pix, 0), 0) : vec4(0.0);
+    vec3 E = directIrradianceAndSpecular(P, n, viewDirection(P), spec, Ls);
+#else
     vec3 E = directIrradiance(P, n);
-    oDirect = vec4(sanitize(albedo / PI * E), 1.0);  // radiance: below the clamp wherever the final image is
-    if (uFeedback != 0 && uLayer == 0) E += (1.0 - uDamping) * texelFetch(uReprojected, radiosityPixelOfScreen(pix), 0).rgb;
+#endif
+    oDirect = vec4(sanitize(albedo / PI * E + Ls), 1.0);  // radiance: below the clamp wherever the final image is
+    vec3 Eind = vec3(0.0);
+    if (uFeedback != 0 && uLayer == 0) Eind = (1.0 - uDamping) * texelFetch(uReprojected, radiosityPixelOfScreen(pix), 0).rgb;
 #ifdef DEEPGI_PROBES
     // Layer 2 has no gathered light of its own, nor layer 1 before there is a history: the probes give theirs.
-    else E += (1.0 - uDamping) * probeIrradiance(P, n);
+    else Eind = (1.0 - uDamping) * probeIrradiance(P, n);
 #endif
+#ifdef OCCLUSION
+    Eind *= texelFetch(uOcclusion, ivec3(pix, uLayer), 0).r;  // occlusion textures darken indirect light only
+#endif
+    E += Eind;
     vec3 B = albedo / PI * E;
     if (uHasEmission != 0) B += texelFetch(uEmission, ivec3(pix, uLayer), 0).rgb;
     oRadiance = sanitizeR11G11B10(B, gl_FragCoord.xy);

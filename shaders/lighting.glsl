@@ -1,4 +1,5 @@
-// Direct light from the punctual lights with shadow maps. Mirrors renderer/scene/lighting.cpp.
+// Direct light from the punctual lights with shadow maps. Mirrors renderer/scene/lighting.cpp. Includes brdf.glsl (ggxSpecular).
+#include "brdf.glsl"
 struct GpuLight {
     vec4 radiance;      // rgb = colour * intensity; w = type (0 directional, 1 point, 2 spot)
     vec4 position;      // xyz; w = range (0 = infinite)
@@ -73,6 +74,50 @@ vec3 directIrradiance(vec3 P, vec3 n) {
         float cosT = dot(n, toLight);
         if (cosT <= 0.0 || atten <= 0.0) continue;
         E += L.radiance.rgb * atten * cosT * shadowFactor(L, P, n, toLight, dist);
+    }
+    return E;
+}
+
+// ---- Direct light with the GGX specular lobe (glTF metallic-roughness; brdf.glsl) ----
+// The light's radiance reaching P (colour x intensity x distance/range/cone attenuation) and the unit direction
+// to it; the same terms as directIrradiance's loop.
+vec3 lightArrival(GpuLight L, vec3 P, out vec3 toLight, out float dist) {
+    int type = int(L.radiance.w);
+    if (type == 0) {
+        toLight = -L.direction.xyz;
+        dist = 1e30;
+        return L.radiance.rgb;
+    }
+    vec3 d = L.position.xyz - P;
+    float d2 = dot(d, d);
+    dist = sqrt(d2);
+    toLight = dist > 0.0 ? d / dist : vec3(0.0, 1.0, 0.0);
+    float atten = rangeWindow(dist, L.position.w) / max(d2, 1e-20);
+    if (type == 2) {
+        float cd = dot(L.direction.xyz, -toLight);
+        float t = clamp((cd - L.direction.w) / max(L.params.x - L.direction.w, 1e-4), 0.0, 1.0);
+        atten *= t * t;
+    }
+    return L.radiance.rgb * atten;
+}
+
+// Shadowed irradiance E on the surface (P, unit n) and, in Ls, the specular radiance towards v (unit, to the
+// viewer) of F0 = spec.rgb, roughness spec.a: sum over lights of F D V * radiance * cos, one shadow lookup each.
+vec3 directIrradianceAndSpecular(vec3 P, vec3 n, vec3 v, vec4 spec, out vec3 Ls) {
+    vec3 E = vec3(0.0);
+    Ls = vec3(0.0);
+    bool specular = any(greaterThan(spec.rgb, vec3(0.0)));
+    for (int i = 0; i < MAX_LIGHTS; ++i) {
+        if (i >= uLightCount) break;
+        GpuLight L = uLights[i];
+        vec3 toLight;
+        float dist;
+        vec3 radiance = lightArrival(L, P, toLight, dist);
+        float cosT = dot(n, toLight);
+        if (cosT <= 0.0 || all(lessThanEqual(radiance, vec3(0.0)))) continue;
+        vec3 Ei = radiance * cosT * shadowFactor(L, P, n, toLight, dist);
+        E += Ei;
+        if (specular) Ls += ggxSpecular(n, v, toLight, spec.rgb, spec.a) * Ei;
     }
     return E;
 }

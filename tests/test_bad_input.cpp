@@ -73,7 +73,9 @@ fs::path writeTexturedQuad(const fs::path& dir, const std::string& name, const s
                       {{"bufferView", 2}, {"componentType", 5123}, {"type", "SCALAR"}, {"count", 6}}};
     j["images"] = {{{"uri", imageUri}}};
     j["textures"] = {{{"source", 0}}};
-    j["materials"] = {{{"pbrMetallicRoughness", {{"baseColorFactor", {0.2, 0.4, 0.6, 1.0}}, {"baseColorTexture", {{"index", 0}}}}}}};
+    // A dielectric (glTF's default metallicFactor is 1: a metal has no diffuse albedo).
+    j["materials"] = {{{"pbrMetallicRoughness", {{"baseColorFactor", {0.2, 0.4, 0.6, 1.0}}, {"metallicFactor", 0.0},
+                                                 {"baseColorTexture", {{"index", 0}}}}}}};
     j["meshes"] = {{{"primitives", {{{"attributes", {{"POSITION", 0}, {"TEXCOORD_0", 1}}}, {"indices", 2}, {"material", 0}}}}}};
     j["cameras"] = {{{"type", "perspective"}, {"name", "cam"}, {"perspective", {{"yfov", 1.0}, {"znear", 0.1}}}}};
     j["nodes"] = {{{"mesh", 0}}, {{"camera", 0}}};

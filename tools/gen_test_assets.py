@@ -17,6 +17,13 @@ writes
                                 (offset, rotation, scale, texCoord 1) on its base-colour texture
     texture_transform/baked.gltf  the same quad with the transform applied to TEXCOORD_0 here (the spec's matrix,
                                 computed in this script), no extension: the independent answer
+    materials/normal_wall.gltf  a 4 x 4 m wall (z = 0, facing +Z, u along +X, v down) under a grazing directional
+                                light (80 deg from the normal, from +X, irradiance 3 W/m^2 facing it) with a constant
+                                normal texture tilting the normal 30 deg towards +X (tangent space (sin 30, 0, cos 30)),
+                                glTF TANGENT (1, 0, 0, 1); camera 'front' 3 m in front of it
+    materials/normal_wall_generated.gltf  the same without TANGENT (tangents generated at load)
+    materials/metal_spheres.gltf a row of five gold spheres (metallic 1, roughness 0.1, 0.3, 0.5, 0.7, 1.0) and a
+                                row of five grey dielectric ones (the same roughness) on a grey floor, one sun
 The Draco and meshopt versions of quant/plain.gltf are written by the tests (tests/test_scene_formats.cpp) with
 the encoders of libdraco and libmeshoptimizer, which Python cannot call.
 """
@@ -290,7 +297,7 @@ def texture_transform_scenes(out):
         else:
             attrs["TEXCOORD_0"] = g.accessor("2f", baked, FLOAT, "VEC2", 4)
         ind = g.accessor("H", [0, 1, 2, 0, 2, 3], USHORT, "SCALAR", 6)
-        g.j["materials"].append({"name": "checker", "pbrMetallicRoughness": {"baseColorTexture": info}})
+        g.j["materials"].append({"name": "checker", "pbrMetallicRoughness": {"baseColorTexture": info, "metallicFactor": 0}})
         g.j["meshes"].append({"primitives": [{"attributes": attrs, "indices": ind, "material": 0}]})
         g.j["nodes"] = [{"mesh": 0}, {"name": "top", "camera": 0, "translation": [0, 2.2, 0], "rotation": quat_x(-math.pi / 2)}]
         g.j["cameras"] = [{"name": "top", "type": "perspective", "perspective": {"yfov": 0.9, "znear": 0.05}}]
@@ -298,6 +305,130 @@ def texture_transform_scenes(out):
         g.j["scene"] = 0
         g.write(os.path.join(out, name + ".gltf"))
     write_png(os.path.join(out, "checker.png"), 64, 64, checker_rows(64, 8, (250, 250, 250), (20, 20, 20)))
+
+
+# ----------------------------------------------------------------------------------------------- materials
+
+NORMAL_TILT_DEG = 30.0   # the normal texture's tilt towards +X (the tangent)
+GRAZING_DEG = 80.0       # the light's angle from the wall's geometric normal
+
+
+def normal_texel():
+    t = math.radians(NORMAL_TILT_DEG)
+    n = (math.sin(t), 0.0, math.cos(t))
+    return tuple(int(round((c * 0.5 + 0.5) * 255)) for c in n)
+
+
+def quat_y(angle):
+    return [0.0, math.sin(angle / 2), 0.0, math.cos(angle / 2)]
+
+
+def sun_node(g, direction_angle_y, intensity):
+    """A KHR_lights_punctual directional light whose -Z is turned about +Y by the angle."""
+    g.j.setdefault("extensions", {})["KHR_lights_punctual"] = {
+        "lights": [{"name": "sun", "type": "directional", "intensity": intensity, "color": [1, 1, 1]}]}
+    g.j["extensionsUsed"] = sorted(set(g.j.get("extensionsUsed", []) + ["KHR_lights_punctual"]))
+    g.j["nodes"].append({"name": "sun", "rotation": quat_y(direction_angle_y), "extensions": {"KHR_lights_punctual": {"light": 0}}})
+    return len(g.j["nodes"]) - 1
+
+
+def normal_wall_scenes(out):
+    for name, with_tangent in (("normal_wall", True), ("normal_wall_generated", False)):
+        g = Gltf()
+        g.j["samplers"].append({"magFilter": 9728, "minFilter": 9728, "wrapS": 10497, "wrapT": 10497})
+        g.j["images"].append({"uri": "tilted_normal.png"})
+        g.j["textures"].append({"source": 0, "sampler": 0})
+        corners = [(-2, -2, 0), (2, -2, 0), (2, 2, 0), (-2, 2, 0)]
+        uvs = [(0, 1), (1, 1), (1, 0), (0, 0)]  # u along +X, v down (glTF: (0, 0) top-left)
+        attrs = {"POSITION": g.accessor("3f", corners, FLOAT, "VEC3", 4, minmax=([-2, -2, 0], [2, 2, 0])),
+                 "NORMAL": g.accessor("3f", [(0, 0, 1)] * 4, FLOAT, "VEC3", 4),
+                 "TEXCOORD_0": g.accessor("2f", uvs, FLOAT, "VEC2", 4)}
+        if with_tangent:
+            attrs["TANGENT"] = g.accessor("4f", [(1, 0, 0, 1)] * 4, FLOAT, "VEC4", 4)
+        ind = g.accessor("H", [0, 1, 2, 0, 2, 3], USHORT, "SCALAR", 6)
+        g.j["materials"].append({"name": "tilted", "normalTexture": {"index": 0, "scale": 1.0},
+                                 "pbrMetallicRoughness": {"baseColorFactor": [0.8, 0.8, 0.8, 1], "metallicFactor": 0,
+                                                          "roughnessFactor": 1}})
+        g.j["meshes"].append({"name": "wall", "primitives": [{"attributes": attrs, "indices": ind, "material": 0}]})
+        g.j["nodes"].append({"mesh": 0, "name": "wall"})
+        g.j["nodes"].append({"name": "front", "camera": 0, "translation": [0, 0, 3]})
+        g.j["cameras"] = [{"name": "front", "type": "perspective", "perspective": {"yfov": 0.9, "znear": 0.05}}]
+        sun = sun_node(g, math.radians(GRAZING_DEG), 3.0)
+        g.j["scenes"].append({"nodes": [0, 1, sun]})
+        g.j["scene"] = 0
+        g.write(os.path.join(out, name + ".gltf"))
+    write_png(os.path.join(out, "tilted_normal.png"), 4, 4, [bytes(normal_texel()) * 4] * 4)
+
+
+def sphere(centre, radius, rings=16, segments=32):
+    verts, idx = [], []
+    for r in range(rings + 1):
+        theta = math.pi * r / rings
+        for k in range(segments + 1):
+            phi = 2 * math.pi * k / segments
+            n = (math.sin(theta) * math.cos(phi), math.cos(theta), math.sin(theta) * math.sin(phi))
+            verts.append((tuple(centre[c] + radius * n[c] for c in range(3)), n, (k / segments, r / rings)))
+    for r in range(rings):
+        for k in range(segments):
+            a = r * (segments + 1) + k
+            b = a + segments + 1
+            if r > 0:
+                idx += [a, a + 1, b]
+            if r < rings - 1:
+                idx += [a + 1, b + 1, b]
+    return verts, idx
+
+
+def metal_spheres_scene(out):
+    g = Gltf()
+    roughness = [0.1, 0.3, 0.5, 0.7, 1.0]
+    prims_nodes = []
+
+    def mesh(name, verts, idx, material):
+        lo = [min(v[0][c] for v in verts) for c in range(3)]
+        hi = [max(v[0][c] for v in verts) for c in range(3)]
+        attrs = {"POSITION": g.accessor("3f", [v[0] for v in verts], FLOAT, "VEC3", len(verts), minmax=(lo, hi)),
+                 "NORMAL": g.accessor("3f", [v[1] for v in verts], FLOAT, "VEC3", len(verts)),
+                 "TEXCOORD_0": g.accessor("2f", [v[2] for v in verts], FLOAT, "VEC2", len(verts))}
+        ind = g.accessor("H", idx, USHORT, "SCALAR", len(idx))
+        g.j["meshes"].append({"name": name, "primitives": [{"attributes": attrs, "indices": ind, "material": material}]})
+        g.j["nodes"].append({"mesh": len(g.j["meshes"]) - 1, "name": name})
+        prims_nodes.append(len(g.j["nodes"]) - 1)
+
+    for row, (kind, base, metallic) in enumerate((("gold", [1.0, 0.78, 0.34, 1], 1), ("grey", [0.5, 0.5, 0.5, 1], 0))):
+        for i, r in enumerate(roughness):
+            g.j["materials"].append({"name": "%s_r%.1f" % (kind, r), "pbrMetallicRoughness": {
+                "baseColorFactor": base, "metallicFactor": metallic, "roughnessFactor": r}})
+            v, ix = sphere(((i - 2) * 1.0, 0.4, -row * 1.0), 0.4)
+            mesh("%s_sphere_%d" % (kind, i), v, ix, len(g.j["materials"]) - 1)
+    g.j["materials"].append({"name": "floor", "pbrMetallicRoughness": {"baseColorFactor": [0.6, 0.6, 0.6, 1],
+                                                                       "metallicFactor": 0, "roughnessFactor": 0.8}})
+    floor = [((-3.5, 0, 2), (0, 1, 0), (0, 1)), ((3.5, 0, 2), (0, 1, 0), (1, 1)), ((3.5, 0, -2.5), (0, 1, 0), (1, 0)),
+             ((-3.5, 0, -2.5), (0, 1, 0), (0, 0))]
+    mesh("floor", floor, [0, 1, 2, 0, 2, 3], len(g.j["materials"]) - 1)
+    g.j["nodes"].append({"name": "front", "camera": 0, "translation": [0, 1.6, 3.4], "rotation": quat_x(-0.38)})
+    g.j["cameras"] = [{"name": "front", "type": "perspective", "perspective": {"yfov": 0.8, "znear": 0.05}}]
+    cam = len(g.j["nodes"]) - 1
+    # The sun from behind-left and above: highlights on the spheres' front faces.
+    g.j.setdefault("extensions", {})["KHR_lights_punctual"] = {
+        "lights": [{"name": "sun", "type": "directional", "intensity": 3.0}]}
+    g.j["extensionsUsed"] = ["KHR_lights_punctual"]
+    # -Z turned to (0.35, -0.6, -0.72) roughly: pitch down 37 deg, then yaw 25 deg
+    qx, qy = quat_x(-0.65), quat_y(0.45)
+    # q = qy * qx
+    w1, x1, y1, z1 = qy[3], qy[0], qy[1], qy[2]
+    w2, x2, y2, z2 = qx[3], qx[0], qx[1], qx[2]
+    q = [w1 * x2 + x1 * w2 + y1 * z2 - z1 * y2, w1 * y2 - x1 * z2 + y1 * w2 + z1 * x2,
+         w1 * z2 + x1 * y2 - y1 * x2 + z1 * w2, w1 * w2 - x1 * x2 - y1 * y2 - z1 * z2]
+    g.j["nodes"].append({"name": "sun", "rotation": q, "extensions": {"KHR_lights_punctual": {"light": 0}}})
+    g.j["scenes"].append({"nodes": prims_nodes + [cam, len(g.j["nodes"]) - 1]})
+    g.j["scene"] = 0
+    g.write(os.path.join(out, "metal_spheres.gltf"))
+
+
+def materials_scenes(out):
+    normal_wall_scenes(out)
+    metal_spheres_scene(out)
 
 
 def main():
@@ -312,7 +443,8 @@ def main():
         f.write(OBJ_ROOM_MTL)
     write_png(os.path.join(room, "textures", "checker.png"), 64, 64, checker_rows(64, 4, (255, 255, 255), (60, 60, 60)))
     write_png(os.path.join(room, "textures", "fence_mask.png"), 64, 64, fence_mask_rows())
-    for sub, fn in (("quant", quant_scenes), ("texture_transform", texture_transform_scenes)):
+    for sub, fn in (("quant", quant_scenes), ("texture_transform", texture_transform_scenes),
+                    ("materials", materials_scenes)):
         d = os.path.join(args.out, sub)
         os.makedirs(d, exist_ok=True)
         fn(d)

@@ -9,6 +9,7 @@ void CompositePass::table(const PipelineConfig& c, PassTable& t) const {
     t.read("Albedo", "uAlbedo");
     t.read("Normal", "uNormal").level(Levels::Base);
     t.read("Emission", "uEmission").optional(!c.emission);
+    t.read("Occlusion", "uOcclusion").optional(!c.occlusion);  // the occlusion texture darkens indirect light only
     t.read("Input Radiance", "uRadiance").level(Levels::Base).optional(!c.seedComposite);  // seed formula only
     t.read("Output Radiance", "uIndirect").optional(!c.indirect);
     t.read("Direct Radiance", "uDirect");  // evaluated once, by the input radiance pass
@@ -18,9 +19,15 @@ void CompositePass::table(const PipelineConfig& c, PassTable& t) const {
              Visualize::Display, "Exposed, tone-mapped, sRGB-encoded final image (what final.png holds)"});
 }
 
+std::vector<std::string> CompositePass::materialDefines(const PipelineConfig& c) {
+    std::vector<std::string> d;
+    if (c.occlusion) d.push_back("OCCLUSION");
+    return d;
+}
+
 void CompositePass::execute(FrameContext& ctx) {
     const CompositeSettings& s = ctx.settings;
-    Program& prog = program_.get(ctx.shaders, {"fullscreen.vert", "", "composite.frag", "", {}});
+    Program& prog = program_.get(ctx.shaders, {"fullscreen.vert", "", "composite.frag", "", materialDefines(ctx.config)});
     prog.hasEmission.set(ctx.config.emission);
     prog.indirectOn.set(ctx.config.indirect);
     prog.seedMode.set(ctx.config.seedComposite);

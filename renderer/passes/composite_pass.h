@@ -11,6 +11,7 @@ public:
     void execute(FrameContext& ctx) override;
 
 private:
+    static std::vector<std::string> materialDefines(const PipelineConfig& c);  // OCCLUSION
     struct Program : gl::Program {
         using gl::Program::Program;
         gl::Uniform<bool> hasEmission{*this, "uHasEmission"};

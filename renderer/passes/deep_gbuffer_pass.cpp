@@ -26,10 +26,24 @@ void DeepGBufferPass::table(const PipelineConfig& c, PassTable& t) const {
              MemoryGroup::Extra, Visualize::ObjectId, "Node index + 1 of the surface of each layer (0 = sky): picking"});
     t.write({"Motion", {"Motion 1", "Motion 2"}, GL_RGBA16F, GL_TEXTURE_2D_ARRAY, SizeRule::screen(), 1, MemoryGroup::Extra,
              Visualize::Color, "World-space position change of each layer's surface since last frame (previous - current; moving objects)"});
+    writeMaterialTextures(c, t);
     if (c.depthPeel)
         t.write({"Peel Depth", {"Peel Depth"}, GL_DEPTH_COMPONENT32, GL_TEXTURE_2D, SizeRule::screen(), 1,
                  MemoryGroup::Extra, Visualize::Depth, "Copy of this frame's layer-1 depth for exact depth peeling (depth_peel mode only)"},
                 "uPeelDepth");
+}
+
+// The metallic-roughness model's extras, only for scenes that have them (a Lambertian scene keeps the seed layout).
+void DeepGBufferPass::writeMaterialTextures(const PipelineConfig& c, PassTable& t) const {
+    if (c.specular)
+        t.write({"Specular", {"Specular 1", "Specular 2"}, GL_RGBA8, GL_TEXTURE_2D_ARRAY, SizeRule::screen(), 1,
+                 MemoryGroup::Extra, Visualize::Color,
+                 "GGX specular of both layers: rgb = F0 = mix(0.04, base, metallic), a = perceptual roughness (the "
+                 "composite shades layer 1's direct lights with it; 0 = no specular)"});
+    if (c.occlusion)
+        t.write({"Occlusion", {"Occlusion 1", "Occlusion 2"}, GL_R8, GL_TEXTURE_2D_ARRAY, SizeRule::screen(), 1,
+                 MemoryGroup::Extra, Visualize::Color,
+                 "The occlusion texture (x strength) of both layers: scales indirect light only (1 = none)"});
 }
 
 void DeepGBufferPass::drawScene(FrameContext& ctx, int firstLayer, int layerCount, bool peel, const char* peelDepth) {
@@ -39,12 +53,15 @@ void DeepGBufferPass::drawScene(FrameContext& ctx, int firstLayer, int layerCoun
         std::vector<std::string> defs;
         if (masked) defs.push_back("MASKED");
         if (ctx.config.emission) defs.push_back("EMISSION");
+        if (ctx.config.specular) defs.push_back("SPECULAR");
+        if (ctx.config.occlusion) defs.push_back("OCCLUSION");
         Program& prog = program_.get(ctx.shaders, {"deep_gbuffer.vert", "deep_gbuffer.geom", "deep_gbuffer.frag", "", defs});
         glUseProgram(prog.id());
         prog.firstLayer.set(firstLayer);
         prog.layerCount.set(layerCount);
         prog.minSeparation.set(g.minSeparation);
         prog.peel.set(peel);
+        prog.diffuseOnly.set(ctx.settings.diffuseOnly);
         ctx.bindSamplers(prog, {{"uPeelDepth", peelDepth}});
         ctx.scene.draw(prog.id(), masked, true);
     }
@@ -62,6 +79,8 @@ void DeepGBufferPass::execute(FrameContext& ctx) {
     if (ctx.config.emission) atts.push_back({GL_COLOR_ATTACHMENT2, ctx.texture("Emission")});
     atts.push_back({GL_COLOR_ATTACHMENT5, ctx.texture("Object ID")});
     atts.push_back({GL_COLOR_ATTACHMENT6, ctx.texture("Motion")});
+    if (ctx.config.specular) atts.push_back({GL_COLOR_ATTACHMENT3, ctx.texture("Specular")});
+    if (ctx.config.occlusion) atts.push_back({GL_COLOR_ATTACHMENT4, ctx.texture("Occlusion")});
     GLuint fbo = ctx.fbos.get(atts, "deep G-buffer");
     glBindFramebuffer(GL_FRAMEBUFFER, fbo);
     glViewport(0, 0, w, h);
@@ -76,6 +95,9 @@ void DeepGBufferPass::execute(FrameContext& ctx) {
     const GLuint noObject[4] = {0, 0, 0, 0};
     glClearBufferuiv(GL_COLOR, 5, noObject);
     glClearBufferfv(GL_COLOR, 6, zero);
+    if (ctx.config.specular) glClearBufferfv(GL_COLOR, 3, zero);
+    const float noOcclusion[4] = {1, 1, 1, 1};
+    if (ctx.config.occlusion) glClearBufferfv(GL_COLOR, 4, noOcclusion);
     const float one = 1.0f;
     glClearBufferfv(GL_DEPTH, 0, &one);
 

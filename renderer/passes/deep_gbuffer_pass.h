@@ -16,12 +16,16 @@ public:
 
 private:
     struct Program : gl::Program {
-        Program(GLuint id, std::string name) : gl::Program(id, std::move(name)) { externalSampler("uBaseTex"); externalSampler("uEmissiveTex"); }
+        Program(GLuint id, std::string name) : gl::Program(id, std::move(name)) {
+            for (const char* s : {"uBaseTex", "uEmissiveTex", "uMetalRoughTex", "uNormalTex", "uOcclusionTex"}) externalSampler(s);
+        }
         gl::Uniform<int> firstLayer{*this, "uFirstLayer"};
         gl::Uniform<int> layerCount{*this, "uLayerCount"};
         gl::Uniform<float> minSeparation{*this, "uMinSeparation"};
         gl::Uniform<bool> peel{*this, "uPeel"};
+        gl::Uniform<bool> diffuseOnly{*this, "uDiffuseOnly"};
     };
+    void writeMaterialTextures(const PipelineConfig& c, PassTable& t) const;
     void drawScene(FrameContext& ctx, int firstLayer, int layerCount, bool peel, const char* peelDepth);
     gl::ProgramSlot<Program> program_;
     int geometryPasses_ = 0;

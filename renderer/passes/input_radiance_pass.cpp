@@ -17,6 +17,8 @@ void InputRadiancePass::table(const PipelineConfig& c, PassTable& t) const {
     }
     t.read("Albedo", "uAlbedo");
     t.read("Emission", "uEmission").optional(!c.emission);
+    t.read("Specular", "uSpecular").optional(!c.specular);     // layer 1's direct specular joins Direct Radiance
+    t.read("Occlusion", "uOcclusion").optional(!c.occlusion);  // scales the indirect feedback
     t.read("Reprojected Radiance", "uReprojected").optional(!c.indirect);  // the multi-bounce feedback
     readShadowMaps(t);
     if (c.probes) readProbeVolume(t);  // layer 2's indirect light, and layer 1's before there is a history
@@ -30,8 +32,8 @@ void InputRadiancePass::table(const PipelineConfig& c, PassTable& t) const {
     // outgoing radiance it is bounded by the same clamp as the final image (an irradiance could pass 65504).
     t.write({"Direct Radiance", {"Direct Radiance"}, GL_RGBA16F, GL_TEXTURE_2D, SizeRule::screen(), 1,
              MemoryGroup::Extra, Visualize::Radiance,
-             "Outgoing direct radiance of layer 1 (albedo / pi x the shadowed direct irradiance from every light), "
-             "evaluated once; the composite adds emission and indirect light"});
+             "Outgoing direct radiance of layer 1 (albedo / pi x the shadowed direct irradiance from every light, plus "
+             "the GGX specular of Specular), evaluated once; the composite adds emission and indirect light"});
 }
 
 void InputRadiancePass::execute(FrameContext& ctx) {
@@ -40,6 +42,8 @@ void InputRadiancePass::execute(FrameContext& ctx) {
     const GLuint radiance = radianceOut ? ctx.texture("Input Radiance") : 0, direct = ctx.texture("Direct Radiance");
     std::vector<std::string> defines;
     if (ctx.config.probes) defines.push_back("DEEPGI_PROBES");
+    if (ctx.config.specular) defines.push_back("SPECULAR");
+    if (ctx.config.occlusion) defines.push_back("OCCLUSION");
     RadianceProgram& prog = radiance_.get(ctx.shaders, {"fullscreen.vert", "", "input_radiance.frag", "", defines});
     if (ctx.config.probes) bindProbeUniforms(ctx);
     prog.lighting.set(ctx);

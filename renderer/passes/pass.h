@@ -25,6 +25,8 @@ class ProbeVolume;
 struct PipelineConfig {
     bool layer2 = true;
     bool emission = false;
+    bool specular = false;     // some material reflects specularly (and material.diffuse_only is off): Specular
+    bool occlusion = false;    // some material has an occlusion texture: Occlusion
     bool indirect = true;
     bool seedComposite = false;
     bool blur = true;

@@ -149,6 +149,7 @@ ProbeHit ProbeTracer::intersect(const glm::vec3& o, const glm::vec3& d, float tn
     const glm::vec2 uv = w * a.uv + u * b.uv + v * c.uv;
     h.albedo = glm::vec3(mat.baseColorFactor);
     if (g.baseTexture.valid()) h.albedo *= glm::vec3(g.baseTexture.sample(uv));
+    h.albedo *= 1.0f - g.metallicRoughnessAt(uv).x;  // the diffuse lobe of glTF metallic-roughness (brdf.h)
     h.emission = mat.emissiveFactor;
     if (g.emissiveTexture.valid() && mat.emissive()) h.emission *= glm::vec3(g.emissiveTexture.sample(uv));
     return h;

@@ -3,6 +3,7 @@
 
 #include "renderer/scene/scene_validation.h"
 
+#include "renderer/scene/brdf.h"
 #include "renderer/scene/lighting.h"
 
 #include <embree3/rtcore.h>
@@ -111,8 +112,10 @@ void embreeError(void* userPtr, RTCError code, const char* message) {
 
 // The shading frame at a hit, oriented towards the side the ray came from.
 struct Surface {
-    glm::vec3 position, geomNormal, normal;  // unit normals
-    glm::vec3 albedo, emission;
+    glm::vec3 position, geomNormal, normal;  // unit normals (normal: the normal map's, where there is one)
+    glm::vec3 albedo, emission;              // albedo: of the Lambertian lobe, base x (1 - metallic)
+    brdf::Params brdf;                       // the GGX lobe (brdf.specular false: Lambertian only)
+    float occlusion = 1.0f;                  // the occlusion texture: scales indirect light arriving here
 };
 
 glm::vec3 offsetOrigin(const glm::vec3& p, const glm::vec3& n) {
@@ -120,18 +123,61 @@ glm::vec3 offsetOrigin(const glm::vec3& p, const glm::vec3& n) {
     return p + n * (1e-4f * scale);
 }
 
-// Cosine-weighted direction about unit n (Malley), via the branchless orthonormal basis of Duff et al. 2017.
-glm::vec3 cosineHemisphere(const glm::vec3& n, float u1, float u2) {
+// The branchless orthonormal basis of Duff et al. 2017 about unit n.
+void basisAbout(const glm::vec3& n, glm::vec3& t, glm::vec3& bt) {
     const float sign = std::copysign(1.0f, n.z);
     const float a = -1.0f / (sign + n.z);
     const float b = n.x * n.y * a;
-    const glm::vec3 t(1.0f + sign * n.x * n.x * a, sign * b, -sign * n.x);
-    const glm::vec3 bt(b, sign + n.y * n.y * a, -n.y);
+    t = glm::vec3(1.0f + sign * n.x * n.x * a, sign * b, -sign * n.x);
+    bt = glm::vec3(b, sign + n.y * n.y * a, -n.y);
+}
+
+// Cosine-weighted direction about unit n (Malley).
+glm::vec3 cosineHemisphere(const glm::vec3& n, float u1, float u2) {
+    glm::vec3 t, bt;
+    basisAbout(n, t, bt);
     const float r = std::sqrt(u1), phi = 2.0f * kPi * u2;
     return glm::normalize(t * (r * std::cos(phi)) + bt * (r * std::sin(phi)) + n * std::sqrt(std::max(0.0f, 1.0f - u1)));
 }
 
 float maxComponent(const glm::vec3& v) { return std::max({v.x, v.y, v.z}); }
+float luminance(const glm::vec3& c) { return 0.2126f * c.x + 0.7152f * c.y + 0.0722f * c.z; }
+
+// One bounce off a surface with the diffuse + GGX BRDF: the lobe is chosen at random (specular with probability
+// from the Fresnel-weighted split), the direction sampled from it (cosine, or GGX visible normals), and the weight
+// f cos / pdf uses the density of both lobes together (one-sample MIS), so either choice is unbiased.
+// Returns false where the path ends (below the horizon); wi and weight otherwise.
+bool sampleBounce(const Surface& s, const glm::vec3& wo, float u0, float u1, float u2, glm::vec3& wi, glm::vec3& weight) {
+    const glm::vec3& n = s.normal;
+    if (!s.brdf.specular) {
+        wi = cosineHemisphere(n, u1, u2);
+        weight = s.albedo;  // f * cos / pdf = (albedo/pi) * cos / (cos/pi)
+        return true;
+    }
+    const float nv = glm::dot(n, wo);
+    if (!(nv > 0.0f)) return false;
+    const float specW = luminance(brdf::fresnel(s.brdf.f0, nv)), diffW = luminance(s.albedo);
+    const float pSpec = diffW <= 0.0f ? 1.0f : std::clamp(specW / (specW + diffW), 0.1f, 0.9f);
+    const float alpha = s.brdf.alpha;
+    if (u0 < pSpec) {
+        glm::vec3 t, bt;
+        basisAbout(n, t, bt);
+        const glm::vec3 vLocal(glm::dot(wo, t), glm::dot(wo, bt), nv);
+        const glm::vec3 hl = brdf::sampleVisibleNormal(vLocal, alpha, u1, u2);
+        const glm::vec3 h = glm::normalize(t * hl.x + bt * hl.y + n * hl.z);
+        wi = glm::reflect(-wo, h);
+    } else {
+        wi = cosineHemisphere(n, u1, u2);
+    }
+    const float nl = glm::dot(n, wi);
+    if (!(nl > 0.0f)) return false;
+    const glm::vec3 h = glm::normalize(wo + wi);
+    const float pdf = (1.0f - pSpec) * nl * kInvPi + pSpec * brdf::reflectionPdf(nv, std::max(glm::dot(n, h), 0.0f), alpha);
+    if (!(pdf > 0.0f) || !std::isfinite(pdf)) return false;
+    const glm::vec3 f = s.albedo * kInvPi + brdf::specular(n, wo, wi, s.brdf.f0, alpha);
+    weight = f * (nl / pdf);
+    return std::isfinite(weight.x) && std::isfinite(weight.y) && std::isfinite(weight.z);
+}
 
 std::string formatDuration(double s) {
     if (!std::isfinite(s) || s < 0.0) return "--";
@@ -201,7 +247,7 @@ struct ReferenceTracer::Impl {
         if (!error.empty()) throw std::runtime_error("reference: building the Embree scene failed: " + error);
     }
 
-    Surface shade(const RTCRayHit& rh, const glm::vec3& dir) const {
+    Surface shade(const RTCRayHit& rh, const glm::vec3& dir, bool diffuseOnly) const {
         const TracedSurface& g = geoms[rh.hit.geomID];
         const glm::uvec3 tri = g.triangle(rh.hit.primID);
         const float u = rh.hit.u, v = rh.hit.v, w = 1.0f - u - v;
@@ -214,20 +260,28 @@ struct ReferenceTracer::Impl {
         glm::vec3 n = g.toWorldNormal(w * a.normal + u * b.normal + v * c.normal);
         const float nLen = glm::length(n);
         n = (nLen > 1e-12f && std::isfinite(nLen)) ? n / nLen : ng;
-        if (g.material->doubleSided && glm::dot(ng, dir) > 0.0f) {
+        const bool backFace = g.material->doubleSided && glm::dot(ng, dir) > 0.0f;
+        if (backFace) {
             ng = -ng;
             n = -n;
         }
         s.geomNormal = ng;
-        s.normal = n;
+        s.normal = g.mappedNormal(tri, u, v, n, backFace);
         const Material& m = *g.material;
         const glm::vec2 uv = w * a.uv + u * b.uv + v * c.uv;
-        // Clamped like the renderer's RGBA8 albedo buffer (and validateMaterial at load), so the two agree.
-        s.albedo = glm::clamp(glm::vec3(m.baseColorFactor), 0.0f, 1.0f);
-        if (g.baseTexture.valid()) s.albedo *= glm::vec3(g.baseTexture.sample(uv));
+        shadeMaterial(g, m, uv, diffuseOnly, s);
         s.emission = m.emissiveFactor;
         if (g.emissiveTexture.valid() && m.emissive()) s.emission *= glm::vec3(g.emissiveTexture.sample(uv));
         return s;
+    }
+
+    // The metallic-roughness material at uv (renderer/scene/brdf.h), as the deep G-buffer pass stores it.
+    static void shadeMaterial(const TracedSurface& g, const Material& m, glm::vec2 uv, bool diffuseOnly, Surface& s) {
+        const glm::vec3 base = g.baseColorAt(uv);
+        const glm::vec2 mr = g.metallicRoughnessAt(uv);
+        s.brdf = brdf::resolve(base, mr.x, mr.y, m.dielectricF0, m.specular(), diffuseOnly);
+        s.albedo = s.brdf.diffuse;
+        s.occlusion = g.occlusionAt(uv);
     }
 
     bool intersect(const glm::vec3& o, const glm::vec3& d, RTCRayHit& rh, float tnear = 0.0f, float tfar = kInf) const {
@@ -264,8 +318,10 @@ struct ReferenceTracer::Impl {
         return r.tfar < 0.0f;  // Embree sets tfar to -inf on a hit
     }
 
-    // Irradiance at s from every light, with shadow rays (no albedo, no 1/pi).
-    glm::vec3 directIrradiance(const Surface& s, const std::vector<Light>& lights, uint64_t& rays) const {
+    // Irradiance at s from every light, with shadow rays (no albedo, no 1/pi); with a GGX lobe, specular adds the
+    // specular radiance towards wo (F D V x each light's irradiance).
+    glm::vec3 directIrradiance(const Surface& s, const std::vector<Light>& lights, uint64_t& rays,
+                               const glm::vec3& wo = glm::vec3(0.0f), glm::vec3* specular = nullptr) const {
         glm::vec3 e(0.0f);
         const glm::vec3 origin = offsetOrigin(s.position, s.geomNormal);
         for (const Light& light : lights) {
@@ -279,7 +335,9 @@ struct ReferenceTracer::Impl {
             }
             ++rays;
             const glm::vec3 dir = std::isfinite(ls.distance) ? glm::normalize(light.position - origin) : ls.toLight;
-            if (!occluded(origin, dir, tfar)) e += ls.irradiance * cosTheta;
+            if (occluded(origin, dir, tfar)) continue;
+            e += ls.irradiance * cosTheta;
+            if (specular) *specular += brdf::specular(s.normal, wo, ls.toLight, s.brdf.f0, s.brdf.alpha) * (ls.irradiance * cosTheta);
         }
         return e;
     }
@@ -288,8 +346,8 @@ struct ReferenceTracer::Impl {
     // hit) and indirect (everything after the first bounce).
     // The camera ray runs from the near to the far clip plane (clipNear/clipFar along it), as the rasterizer clips.
     void tracePath(glm::vec3 origin, glm::vec3 dir, float clipNear, float clipFar, Pcg32& rng,
-                   const std::vector<Light>& lights, float background, int maxBounces, glm::vec3& direct,
-                   glm::vec3& indirect, uint64_t& rays) const {
+                   const std::vector<Light>& lights, float background, int maxBounces, bool diffuseOnly,
+                   glm::vec3& direct, glm::vec3& indirect, uint64_t& rays) const {
         glm::vec3 throughput(1.0f);
         for (int depth = 0;; ++depth) {
             RTCRayHit rh;
@@ -299,19 +357,23 @@ struct ReferenceTracer::Impl {
                 if (depth == 0) direct += glm::vec3(background);
                 return;
             }
-            const Surface s = shade(rh, dir);
+            const Surface s = shade(rh, dir, diffuseOnly);
             glm::vec3& acc = depth == 0 ? direct : indirect;
-            const glm::vec3 e = directIrradiance(s, lights, rays);
-            acc += throughput * (s.emission + s.albedo * kInvPi * e);
+            glm::vec3 specular(0.0f);
+            const glm::vec3 e = directIrradiance(s, lights, rays, -dir, s.brdf.specular ? &specular : nullptr);
+            acc += throughput * (s.emission + s.albedo * kInvPi * e + specular);
             if (depth >= maxBounces) return;
 
+            // The lobe choice takes a third number only for specular materials (Lambertian paths stay as they were).
+            const float u0 = s.brdf.specular ? rng.uniform() : 0.0f;
             const float u1 = rng.uniform(), u2 = rng.uniform();
-            const glm::vec3 wi = cosineHemisphere(s.normal, u1, u2);
+            glm::vec3 wi, weight;
+            if (!sampleBounce(s, -dir, u0, u1, u2, wi, weight)) return;
             // Directions below the geometric surface (possible with interpolated normals) end the path.
             if (!(glm::dot(wi, s.geomNormal) > 0.0f)) return;
-            throughput *= s.albedo;  // f * cos / pdf = (albedo/pi) * cos / (cos/pi)
+            throughput *= weight * s.occlusion;  // the occlusion texture darkens the indirect light arriving here
             if (depth + 1 > kRouletteAfter) {
-                const float survive = std::min(0.95f, maxComponent(s.albedo));
+                const float survive = std::min(0.95f, maxComponent(weight));
                 if (!(rng.uniform() < survive)) return;
                 throughput /= survive;
             }
@@ -426,7 +488,7 @@ ReferenceResult ReferenceTracer::render(const Camera& camera, const Settings& se
                             glm::vec3 direct(0.0f), indirect(0.0f);
                             const float along = std::max(glm::dot(d, forward), 1e-6f);  // 1 for orthographic
                             impl_->tracePath(o, d, camera.znear / along, camera.zfar / along, rng, lights, background,
-                                             opt.maxBounces, direct, indirect, rays);
+                                             opt.maxBounces, settings.diffuseOnly, direct, indirect, rays);
                             const glm::dvec3 f = glm::dvec3(direct) + glm::dvec3(indirect);
                             sumD += glm::dvec3(direct);
                             sumI += glm::dvec3(indirect);

@@ -43,8 +43,10 @@ glm::vec4 texel(const TextureView& t, int x, int y) {
     x = wrapIndex(x, t.width, t.wrapS);
     y = wrapIndex(y, t.height, t.wrapT);  // row 0 = top = v 0 (glTF)
     const uint8_t* p = t.texels + (size_t(y) * t.width + x) * 4;
+    constexpr float k = 1.0f / 255.0f;
+    if (!t.srgb) return glm::vec4(float(p[0]) * k, float(p[1]) * k, float(p[2]) * k, float(p[3]) * k);
     const auto& lut = srgbTable();
-    return glm::vec4(lut[p[0]], lut[p[1]], lut[p[2]], float(p[3]) * (1.0f / 255.0f));
+    return glm::vec4(lut[p[0]], lut[p[1]], lut[p[2]], float(p[3]) * k);
 }
 
 }  // namespace
@@ -72,6 +74,7 @@ TextureView makeTextureView(const Scene& scene, int textureIndex) {
     v.wrapS = t.wrapS;
     v.wrapT = t.wrapT;
     v.nearest = t.magFilter == FilterMode::Nearest;
+    v.srgb = t.srgb;
     return v;
 }
 
@@ -81,8 +84,51 @@ namespace deepgi {
 
 TracedSurface::TracedSurface(const Scene& scene, const MeshPart& p)
     : part(&p), material(&scene.material(p.material)), baseTexture(makeTextureView(scene, material->baseColorTexture)),
-      emissiveTexture(makeTextureView(scene, material->emissiveTexture)) {
+      emissiveTexture(makeTextureView(scene, material->emissiveTexture)),
+      metalRoughTexture(makeTextureView(scene, material->metallicRoughnessTexture)),
+      normalTexture(makeTextureView(scene, material->normalTexture)),
+      occlusionTexture(makeTextureView(scene, material->occlusionTexture)) {
     setModel(scene.partModel(int(&p - scene.parts.data())));
+}
+
+glm::vec3 TracedSurface::baseColorAt(glm::vec2 uv) const {
+    // Clamped like the renderer's RGBA8 albedo buffer (and validateMaterial at load), so the two agree.
+    glm::vec3 c = glm::clamp(glm::vec3(material->baseColorFactor), 0.0f, 1.0f);
+    if (baseTexture.valid()) c *= glm::vec3(baseTexture.sample(uv));
+    return c;
+}
+
+glm::vec2 TracedSurface::metallicRoughnessAt(glm::vec2 uv) const {
+    glm::vec2 mr(material->metallic, material->roughness);
+    if (metalRoughTexture.valid()) {
+        const glm::vec4 t = metalRoughTexture.sample(uv);
+        mr *= glm::vec2(t.z, t.y);  // glTF: B = metallic, G = roughness
+    }
+    return glm::clamp(mr, 0.0f, 1.0f);
+}
+
+float TracedSurface::occlusionAt(glm::vec2 uv) const {
+    if (!occlusionTexture.valid()) return 1.0f;
+    return std::clamp(1.0f + material->occlusionStrength * (occlusionTexture.sample(uv).x - 1.0f), 0.0f, 1.0f);
+}
+
+glm::vec3 TracedSurface::mappedNormal(const glm::uvec3& t, float u, float v, const glm::vec3& n, bool backFace) const {
+    if (!normalTexture.valid()) return n;
+    const Vertex &a = part->vertices[t.x], &b = part->vertices[t.y], &c = part->vertices[t.z];
+    glm::vec4 tan = (1.0f - u - v) * a.tangent + u * b.tangent + v * c.tangent;
+    if (moved) tan = glm::vec4(glm::mat3(model) * glm::vec3(tan), tan.w);  // tangents move with the object
+    if (backFace) tan = -tan;
+    glm::vec3 tn = glm::vec3(normalTexture.sample(uvAt(t, u, v))) * 2.0f - 1.0f;
+    tn.x *= material->normalScale;
+    tn.y *= material->normalScale;
+    glm::vec3 T = glm::vec3(tan) - n * glm::dot(n, glm::vec3(tan));
+    const float len = glm::length(T);
+    if (!(len > 1e-12f)) return n;
+    T /= len;
+    const glm::vec3 B = glm::cross(n, T) * (tan.w < 0.0f ? -1.0f : 1.0f);
+    const glm::vec3 m = T * tn.x + B * tn.y + n * tn.z;
+    const float ml = glm::length(m);
+    return ml > 1e-12f && std::isfinite(ml) ? m / ml : n;
 }
 
 void TracedSurface::setModel(const glm::mat4& m) {

@@ -16,6 +16,7 @@ struct TextureView {
     int width = 0, height = 0;
     WrapMode wrapS = WrapMode::Repeat, wrapT = WrapMode::Repeat;
     bool nearest = false;
+    bool srgb = true;  // rgb sRGB-decoded (colour); false: data textures, linear
 
     bool valid() const { return texels != nullptr; }
     glm::vec4 sample(glm::vec2 uv) const;
@@ -33,6 +34,7 @@ struct TracedSurface {
     bool moved = false;
     glm::mat4 model{1.0f};
     glm::mat3 normalMatrix{1.0f};  // cofactor of mat3(model): inverse transpose up to a positive scale
+    TextureView metalRoughTexture, normalTexture, occlusionTexture;  // linear data (glTF metallic-roughness)
 
     TracedSurface() = default;
     TracedSurface(const Scene& scene, const MeshPart& p);  // also takes the part's current model matrix
@@ -60,6 +62,13 @@ struct TracedSurface {
         if (baseTexture.valid()) a *= baseTexture.sample(uvAt(t, u, v)).w;
         return a;
     }
+    // The shading normal at barycentrics (u, v): n (unit, oriented to the ray's side; backFace = the hit was on the
+    // back of a double-sided material) perturbed by the normal texture, as shaders/material.glsl mappedNormal.
+    glm::vec3 mappedNormal(const glm::uvec3& t, float u, float v, const glm::vec3& n, bool backFace) const;
+    // Base colour rgb, metallic, roughness, occlusion at uv (factors x textures).
+    glm::vec3 baseColorAt(glm::vec2 uv) const;
+    glm::vec2 metallicRoughnessAt(glm::vec2 uv) const;
+    float occlusionAt(glm::vec2 uv) const;
     // A masked material's texel below its cutoff: rays pass through it.
     bool cutOut(const glm::uvec3& t, float u, float v) const {
         return material->masked() && alphaAt(t, u, v) < material->alphaCutoff;

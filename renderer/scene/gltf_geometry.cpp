@@ -1,6 +1,7 @@
 // glTF loader, geometry: buffers, buffer views, accessors (sparse included) and mesh primitives. Every offset,
 // stride and count is range-checked before anything is read, because tinygltf 2.7 trusts them.
 #include "renderer/scene/gltf_reader.h"
+#include "renderer/scene/tangents.h"
 
 #include <algorithm>
 #include <cstring>
@@ -280,7 +281,7 @@ void GltfReader::addMesh(int meshIndex, const glm::mat4& world) {
                                 ? materialUv_[size_t(prim.material)] : UvSet{};
         const std::string uvName = "TEXCOORD_" + std::to_string(uvSet.texCoord);
         for (const auto& [attr, index] : prim.attributes)
-            if (attr == "POSITION" || attr == "NORMAL" || attr == uvName) checkAccessorFits(index, what + " " + attr);
+            if (attr == "POSITION" || attr == "NORMAL" || attr == uvName || attr == "TANGENT") checkAccessorFits(index, what + " " + attr);
         if (prim.indices >= 0) checkAccessorFits(prim.indices, what + " indices");
         const uint64_t transientBytes = primitiveBytesBound(prim, mode);
         const std::string instance = what + " (instance " + std::to_string(meshInstances_[size_t(meshIndex)] + 1) +
@@ -309,6 +310,17 @@ void GltfReader::addMesh(int meshIndex, const glm::mat4& world) {
             if (uv.size() / 2 != nv) fail(what + ": " + uvName + " count differs from POSITION count");
         } else if (uvSet.texCoord != 0) {
             warn(what + ": its material's textures read " + uvName + ", which the primitive lacks; using (0, 0)");
+        }
+
+        // TANGENT only matters to a normal-mapped material; without it tangents are generated from the UVs below.
+        const bool normalMapped = prim.material >= 0 && size_t(prim.material) < scene_.materials.size() &&
+                                  scene_.materials[size_t(prim.material)].normalTexture >= 0;
+        std::vector<float> tan;
+        auto tanIt = prim.attributes.find("TANGENT");
+        if (normalMapped && tanIt != prim.attributes.end()) {
+            tan = readFloats(tanIt->second, TINYGLTF_TYPE_VEC4, quantized_ ? normalTypes : floatOnly, true, false,
+                             what + " TANGENT");
+            if (tan.size() / 4 != nv) fail(what + ": TANGENT count differs from POSITION count");
         }
 
         std::vector<uint32_t> idx;
@@ -358,6 +370,15 @@ void GltfReader::addMesh(int meshIndex, const glm::mat4& world) {
             v.position = glm::vec3(world * glm::vec4(pos[i * 3], pos[i * 3 + 1], pos[i * 3 + 2], 1.0f));
             v.uv = uv.empty() ? glm::vec2(0.0f) : glm::vec2(uvSet.transform * glm::vec3(uv[i * 2], uv[i * 2 + 1], 1.0f));
             if (!finite3(glm::vec3(v.uv, 0.0f))) v.uv = glm::vec2(0.0f);
+            if (!tan.empty()) {
+                // The tangent moves with the surface (the model matrix); a mirroring transform flips handedness.
+                const glm::vec3 t = glm::mat3(world) * glm::vec3(tan[i * 4], tan[i * 4 + 1], tan[i * 4 + 2]);
+                const float tl = glm::length(t), w = tan[i * 4 + 3];
+                if (tl > 1e-20f && std::isfinite(tl) && std::isfinite(w))
+                    v.tangent = glm::vec4(t / tl, (w < 0.0f ? -1.0f : 1.0f) * (flip ? -1.0f : 1.0f));
+                else
+                    v.tangent = glm::vec4(0.0f);  // regenerated below
+            }
             if (nrm.empty()) {
                 badNormal[i] = 1;
                 continue;
@@ -398,6 +419,11 @@ void GltfReader::addMesh(int meshIndex, const glm::mat4& world) {
         }
         skippedNonFinite_ += skipped;
         if (part.indices.empty()) continue;
+        if (normalMapped) {
+            bool missing = tan.empty();
+            for (const Vertex& v : part.vertices) missing = missing || v.tangent.w == 0.0f;
+            if (missing) generateTangents(part);
+        }
         reserveMemory(part.vertices.size() * sizeof(Vertex) + part.indices.size() * sizeof(uint32_t), instance, true);
         scene_.parts.push_back(std::move(part));
     }

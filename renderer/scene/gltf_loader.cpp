@@ -196,6 +196,7 @@ Scene GltfReader::run() {
     decodeMeshopt();
     decodeDraco();
     loadMaterials();
+    warnIgnoredMaterialExtensions();
     traverse();
     loadAnimations();
     validateScene(scene_);
@@ -336,7 +337,8 @@ void GltfReader::checkExtensions() {
         if (!supportedExtensions().count(e)) fail("required extension '" + e + "' is not supported");
     std::string ignored;
     for (const auto& e : model_.extensionsUsed) {
-        if (!supportedExtensions().count(e)) ignored += (ignored.empty() ? "" : ", ") + e;
+        // Material extensions are named with the material that uses them (warnIgnoredMaterialExtensions).
+        if (!supportedExtensions().count(e) && e.rfind("KHR_materials_", 0) != 0) ignored += (ignored.empty() ? "" : ", ") + e;
         if (e == "KHR_mesh_quantization") quantized_ = true;
     }
     if (!ignored.empty()) warn("ignoring unsupported optional extension(s): " + ignored);

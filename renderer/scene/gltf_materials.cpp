@@ -8,6 +8,8 @@
 #include <algorithm>
 #include <climits>
 #include <cmath>
+#include <filesystem>
+#include <set>
 
 namespace deepgi {
 namespace gltf {
@@ -73,15 +75,15 @@ int GltfReader::resolveImage(int gi, const std::string& user) {
     return imageMap_[size_t(gi)];
 }
 
-int GltfReader::resolveTexture(const tinygltf::TextureInfo& info, const std::string& user) {
-    const int ti = info.index;
+int GltfReader::resolveTexture(int ti, const std::string& user, bool srgb) {
     if (ti < 0) return -1;
     if (size_t(ti) >= model_.textures.size()) {
         warn(user + ": texture " + std::to_string(ti) + " does not exist; using the fallback colour");
         return -1;
     }
-    if (textureMap_[size_t(ti)] != -2) return textureMap_[size_t(ti)];
-    textureMap_[size_t(ti)] = -1;
+    std::vector<int>& map = srgb ? textureMap_ : linearTextureMap_;
+    if (map[size_t(ti)] != -2) return map[size_t(ti)];
+    map[size_t(ti)] = -1;
     const auto& t = model_.textures[size_t(ti)];
     if (t.source < 0) {
         warn(user + ": texture " + std::to_string(ti) + " has no supported image source; using the fallback colour");
@@ -91,6 +93,7 @@ int GltfReader::resolveTexture(const tinygltf::TextureInfo& info, const std::str
     if (img < 0) return -1;
     Texture tex;
     tex.image = img;
+    tex.srgb = srgb;
     if (t.sampler >= 0 && size_t(t.sampler) < model_.samplers.size()) {
         const auto& s = model_.samplers[size_t(t.sampler)];
         tex.wrapS = wrapMode(s.wrapS);
@@ -101,15 +104,15 @@ int GltfReader::resolveTexture(const tinygltf::TextureInfo& info, const std::str
         warn(user + ": sampler " + std::to_string(t.sampler) + " does not exist; using defaults");
     }
     scene_.textures.push_back(tex);
-    textureMap_[size_t(ti)] = int(scene_.textures.size()) - 1;
-    return textureMap_[size_t(ti)];
+    map[size_t(ti)] = int(scene_.textures.size()) - 1;
+    return map[size_t(ti)];
 }
 
-GltfReader::UvSet GltfReader::textureUv(const tinygltf::TextureInfo& info, const std::string& user) {
+GltfReader::UvSet GltfReader::textureUv(int texCoord, const tinygltf::ExtensionMap& extensions, const std::string& user) {
     UvSet u;
-    u.texCoord = std::max(0, info.texCoord);
-    auto it = info.extensions.find("KHR_texture_transform");
-    if (it == info.extensions.end() || !it->second.IsObject()) return u;
+    u.texCoord = std::max(0, texCoord);
+    auto it = extensions.find("KHR_texture_transform");
+    if (it == extensions.end() || !it->second.IsObject()) return u;
     const tinygltf::Value& t = it->second;
     auto number = [&](const tinygltf::Value& v, double fallback, bool& ok) {
         if (!v.IsNumber()) { ok = false; return fallback; }
@@ -147,6 +150,7 @@ void GltfReader::loadMaterials() {
     imageMap_.assign(model_.images.size(), -2);
     materialUv_.clear();
     textureMap_.assign(model_.textures.size(), -2);
+    linearTextureMap_.assign(model_.textures.size(), -2);
     for (size_t i = 0; i < model_.materials.size(); ++i) {
         const auto& gm = model_.materials[i];
         Material m;
@@ -171,7 +175,9 @@ void GltfReader::loadMaterials() {
             (base.texCoord != emissive.texCoord || base.transform != emissive.transform))
             warn(user + ": the emissive texture's UV set or KHR_texture_transform differs from the base colour "
                         "texture's; both are sampled with the base colour's");
-        materialUv_.push_back(m.baseColorTexture >= 0 ? base : m.emissiveTexture >= 0 ? emissive : UvSet{});
+        UvSet uv = m.baseColorTexture >= 0 ? base : m.emissiveTexture >= 0 ? emissive : UvSet{};
+        loadPbrTextures(gm, m, uv, m.baseColorTexture >= 0 || m.emissiveTexture >= 0, user);
+        materialUv_.push_back(uv);
         m.alphaCutoff = finiteOr(gm.alphaCutoff, 0.5f);
         if (gm.alphaMode == "MASK") {
             m.alphaMode = AlphaMode::Mask;
@@ -184,6 +190,52 @@ void GltfReader::loadMaterials() {
         }
         m.doubleSided = gm.doubleSided;
         scene_.materials.push_back(std::move(m));
+    }
+}
+
+void GltfReader::loadPbrTextures(const tinygltf::Material& gm, Material& m, UvSet& uv, bool uvChosen,
+                                 const std::string& user) {
+    const auto& pbr = gm.pbrMetallicRoughness;
+    m.metallic = finiteOr(pbr.metallicFactor, 1.0f);    // validateMaterial clamps to [0, 1]
+    m.roughness = finiteOr(pbr.roughnessFactor, 1.0f);
+    m.dielectricF0 = 0.04f;                             // glTF: a dielectric's ior is 1.5
+    m.metallicRoughnessTexture = resolveTexture(pbr.metallicRoughnessTexture.index, user, false);
+    m.normalTexture = resolveTexture(gm.normalTexture.index, user, false);
+    m.normalScale = finiteOr(gm.normalTexture.scale, 1.0f);
+    m.occlusionTexture = resolveTexture(gm.occlusionTexture.index, user, false);
+    m.occlusionStrength = finiteOr(gm.occlusionTexture.strength, 1.0f);
+    // One UV set per primitive (Vertex::uv): a texture on another set or transform is sampled with the chosen one.
+    const struct { int texture; int texCoord; const tinygltf::ExtensionMap& ext; const char* what; } refs[] = {
+        {m.metallicRoughnessTexture, pbr.metallicRoughnessTexture.texCoord, pbr.metallicRoughnessTexture.extensions,
+         "metallic-roughness"},
+        {m.normalTexture, gm.normalTexture.texCoord, gm.normalTexture.extensions, "normal"},
+        {m.occlusionTexture, gm.occlusionTexture.texCoord, gm.occlusionTexture.extensions, "occlusion"}};
+    for (const auto& r : refs) {
+        if (r.texture < 0) continue;
+        const UvSet u = textureUv(r.texCoord, r.ext, user + " " + r.what + " texture");
+        if (!uvChosen) {
+            uv = u;
+            uvChosen = true;
+        } else if (u.texCoord != uv.texCoord || u.transform != uv.transform) {
+            warn(user + ": the " + std::string(r.what) + " texture's UV set or KHR_texture_transform differs from the "
+                        "material's other textures; it is sampled with theirs");
+        }
+    }
+}
+
+void GltfReader::warnIgnoredMaterialExtensions() {
+    // Material extensions (KHR_materials_*, the old spec-gloss one) deepgi does not implement: one warning each per
+    // file, naming the first material that uses it (the others render with the core model alike).
+    std::set<std::string> seen;
+    for (size_t i = 0; i < model_.materials.size(); ++i) {
+        const auto& gm = model_.materials[i];
+        for (const auto& [ext, value] : gm.extensions) {
+            (void)value;
+            if (supportedExtensions().count(ext) || !seen.insert(ext).second) continue;
+            const std::string name = gm.name.empty() ? "material" + std::to_string(i) : gm.name;
+            warn(printable(std::filesystem::path(path_).filename().string()) + ": material '" + printable(name) + "' uses " + printable(ext) +
+                 ", which deepgi ignores");
+        }
     }
 }
 

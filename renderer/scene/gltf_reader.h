@@ -65,6 +65,7 @@ private:
     uint64_t elements_ = 0;
     std::vector<int> imageMap_;    // glTF image -> Scene::images index, -1 unusable, -2 not decoded yet
     std::vector<int> textureMap_;  // glTF texture -> Scene::textures index, -1 unusable, -2 not resolved yet
+    std::vector<int> linearTextureMap_;  // the same for textures read as data (normal, metallic-roughness, occlusion)
     std::map<std::string, std::string> uriProblems_;  // URI -> why it was not read (escapes, FIFO, ...)
     uint64_t skippedNonFinite_ = 0;
     int currentNode_ = -1;                    // the Scene node being placed (addMesh/addCamera/addLight tag with it)
@@ -123,10 +124,18 @@ private:
 
     // ---- materials and images (gltf_materials.cpp) ----
     int resolveImage(int gi, const std::string& user);
-    int resolveTexture(const tinygltf::TextureInfo& info, const std::string& user);
+    // srgb: a colour texture (base, emissive), else data sampled linearly; one Scene texture per (texture, srgb).
+    int resolveTexture(int index, const std::string& user, bool srgb = true);
+    int resolveTexture(const tinygltf::TextureInfo& info, const std::string& user) { return resolveTexture(info.index, user); }
     // The UV set and KHR_texture_transform of a texture reference (an identity, set 0, when it has none).
-    UvSet textureUv(const tinygltf::TextureInfo& info, const std::string& user);
+    UvSet textureUv(int texCoord, const tinygltf::ExtensionMap& extensions, const std::string& user);
+    UvSet textureUv(const tinygltf::TextureInfo& info, const std::string& user) { return textureUv(info.texCoord, info.extensions, user); }
     void loadMaterials();
+    // Metallic-roughness, normal and occlusion textures of glTF material i into m (the one UV set rule included).
+    // uv: the material's UV set; taken from the first of these textures when uvChosen is false.
+    void loadPbrTextures(const tinygltf::Material& gm, Material& m, UvSet& uv, bool uvChosen, const std::string& user);
+    // One warning per material extension deepgi ignores (KHR_materials_clearcoat, ...), naming the first material.
+    void warnIgnoredMaterialExtensions();
 
     // ---- animations (gltf_animation.cpp): node TRS channels; skins and morph targets warned about once each ----
     void loadAnimations();

@@ -38,6 +38,7 @@ struct Texture {
     WrapMode wrapS = WrapMode::Repeat, wrapT = WrapMode::Repeat;
     FilterMode magFilter = FilterMode::Linear;
     bool mipmaps = true;  // trilinear minification
+    bool srgb = true;     // colour (base, emissive) is sRGB-encoded; data (normal, metallic-roughness, occlusion) is linear
 };
 
 enum class AlphaMode : uint8_t { Opaque, Mask, Blend };  // Blend is rendered as Mask (with a warning at load)
@@ -51,14 +52,30 @@ struct Material {
     AlphaMode alphaMode = AlphaMode::Opaque;
     float alphaCutoff = 0.5f;
     bool doubleSided = false;
+    // glTF metallic-roughness (the core model; renderer/scene/brdf.h): diffuse albedo = base x (1 - metallic), GGX
+    // specular with F0 = mix(dielectricF0, base, metallic). Built in code (and OBJ): Lambertian, dielectricF0 0;
+    // the glTF loader sets dielectricF0 to 0.04 (glTF's ior 1.5).
+    float metallic = 0.0f, roughness = 1.0f;
+    float dielectricF0 = 0.0f;
+    int metallicRoughnessTexture = -1;  // linear: G = roughness, B = metallic (multiplying the factors)
+    int normalTexture = -1;             // linear, tangent space (+Y up); needs Vertex::tangent
+    float normalScale = 1.0f;
+    int occlusionTexture = -1;          // linear, R; darkens indirect light only
+    float occlusionStrength = 1.0f;
     bool masked() const { return alphaMode != AlphaMode::Opaque; }
     bool emissive() const { return emissiveFactor.x > 0.0f || emissiveFactor.y > 0.0f || emissiveFactor.z > 0.0f; }
+    // Any specular reflection at all (a pure Lambertian material has none).
+    bool specular() const { return metallic > 0.0f || metallicRoughnessTexture >= 0 || dielectricF0 > 0.0f; }
+    bool occluded() const { return occlusionTexture >= 0 && occlusionStrength > 0.0f; }
 };
 
 struct Vertex {
     glm::vec3 position;  // world space of the rest pose (partModel() moves it)
     glm::vec3 normal;    // world space, unit length (flat normals generated where the file has none)
     glm::vec2 uv;        // TEXCOORD_0, (0,0) where missing
+    // World-space unit tangent (direction of increasing u) and handedness w: bitangent = cross(normal, xyz) * w
+    // points to decreasing v (glTF's +Y up). glTF TANGENT, else generated at load for normal-mapped materials.
+    glm::vec4 tangent{1.0f, 0.0f, 0.0f, 1.0f};
 };
 
 // One glTF primitive instance, flattened to world space, triangles only.
@@ -162,6 +179,14 @@ struct Scene {
     }
     bool hasMaskedMaterial() const {
         for (const auto& m : materials) if (m.masked()) return true;
+        return false;
+    }
+    bool hasSpecular() const {
+        for (const auto& m : materials) if (m.specular()) return true;
+        return false;
+    }
+    bool hasOcclusion() const {
+        for (const auto& m : materials) if (m.occluded()) return true;
         return false;
     }
     bool hasEmission() const {

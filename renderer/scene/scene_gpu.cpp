@@ -48,9 +48,9 @@ SceneGpu::SceneGpu(const Scene& scene) : materials_(scene.materials) {
     const GLuint v = vao_.id();
     glVertexArrayVertexBuffer(v, 0, vbo_.id(), 0, sizeof(Vertex));
     glVertexArrayElementBuffer(v, ibo_.id());
-    const GLuint offsets[3] = {offsetof(Vertex, position), offsetof(Vertex, normal), offsetof(Vertex, uv)};
-    const GLint sizes[3] = {3, 3, 2};
-    for (GLuint a = 0; a < 3; ++a) {
+    const GLuint offsets[4] = {offsetof(Vertex, position), offsetof(Vertex, normal), offsetof(Vertex, uv), offsetof(Vertex, tangent)};
+    const GLint sizes[4] = {3, 3, 2, 4};
+    for (GLuint a = 0; a < 4; ++a) {
         glEnableVertexArrayAttrib(v, a);
         glVertexArrayAttribFormat(v, a, sizes[a], GL_FLOAT, GL_FALSE, offsets[a]);
         glVertexArrayAttribBinding(v, a, 0);
@@ -66,7 +66,7 @@ SceneGpu::SceneGpu(const Scene& scene) : materials_(scene.materials) {
     updateObjects(scene);
     lastFrame_ = current_;
 
-    // Textures: sRGB colour with trilinear mipmaps.
+    // Textures: sRGB colour or linear data (normal, metallic-roughness, occlusion) with trilinear mipmaps.
     for (const auto& t : scene.textures) {
         if (t.image < 0 || t.image >= (int)scene.images.size() || scene.images[t.image].rgba8.empty()) {
             textures_.emplace_back();
@@ -75,7 +75,7 @@ SceneGpu::SceneGpu(const Scene& scene) : materials_(scene.materials) {
         const Image& img = scene.images[t.image];
         auto tex = gl::createTexture(GL_TEXTURE_2D, img.name);
         const int levels = 1 + int(std::log2(double(std::max(img.width, img.height))));
-        glTextureStorage2D(tex.id(), levels, GL_SRGB8_ALPHA8, img.width, img.height);
+        glTextureStorage2D(tex.id(), levels, t.srgb ? GL_SRGB8_ALPHA8 : GL_RGBA8, img.width, img.height);
         glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
         glTextureSubImage2D(tex.id(), 0, 0, 0, img.width, img.height, GL_RGBA, GL_UNSIGNED_BYTE, img.rgba8.data());
         glGenerateTextureMipmap(tex.id());
@@ -94,6 +94,9 @@ void SceneGpu::draw(GLuint program, bool masked, bool cullBackFaces) const {
     const GLint locHasBase = glGetUniformLocation(program, "uHasBaseTex");
     const GLint locHasEm = glGetUniformLocation(program, "uHasEmissiveTex");
     const GLint locCutoff = glGetUniformLocation(program, "uAlphaCutoff");
+    const GLint locPbr = glGetUniformLocation(program, "uMetalRoughF0");
+    const GLint locNormalOcc = glGetUniformLocation(program, "uNormalScaleOcclusion");
+    const GLint locHasPbr = glGetUniformLocation(program, "uHasPbrTex");
     static const Material kDefault{};
     for (const auto& b : batches_) {
         const Material& m = (b.material >= 0 && b.material < (int)materials_.size()) ? materials_[b.material] : kDefault;
@@ -107,6 +110,16 @@ void SceneGpu::draw(GLuint program, bool masked, bool cullBackFaces) const {
         glProgramUniform1f(program, locCutoff, m.alphaCutoff);
         glBindTextureUnit(0, baseTex);
         glBindTextureUnit(1, emTex);
+        // Metallic-roughness, normal and occlusion (material.glsl): units 2..4, -1 locations ignored by GL.
+        const GLuint mrTex = texOf(m.metallicRoughnessTexture), nTex = texOf(m.normalTexture), oTex = texOf(m.occlusionTexture);
+        const glm::vec4 pbr(m.metallic, m.roughness, m.dielectricF0, m.specular() ? 1.0f : 0.0f);
+        const glm::vec2 normalOcc(m.normalScale, m.occlusionStrength);
+        glProgramUniform4fv(program, locPbr, 1, &pbr.x);
+        glProgramUniform2fv(program, locNormalOcc, 1, &normalOcc.x);
+        glProgramUniform3i(program, locHasPbr, mrTex != 0, nTex != 0, oTex != 0);
+        glBindTextureUnit(2, mrTex);
+        glBindTextureUnit(3, nTex);
+        glBindTextureUnit(4, oTex);
         if (cullBackFaces && !m.doubleSided) glEnable(GL_CULL_FACE);
         else glDisable(GL_CULL_FACE);
         drawBatch(b);

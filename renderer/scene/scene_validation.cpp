@@ -182,6 +182,21 @@ void validateMaterial(Material& m, std::vector<std::string>* w) {
         for (int c = 0; c < 3; ++c) if (!std::isfinite(e[c]) || e[c] < 0.0f) e[c] = 0.0f;
         note(w, who + "negative or non-finite emissiveFactor, those channels set to 0");
     }
+    // Metallic-roughness factors: [0, 1] (glTF's range); normal scale finite; occlusion strength [0, 1].
+    const auto unit = [&](float& v, float fallback, const char* what) {
+        if (std::isfinite(v) && v >= 0.0f && v <= 1.0f) return;
+        const float fixed = std::isfinite(v) ? glm::clamp(v, 0.0f, 1.0f) : fallback;
+        note(w, who + what + " " + num(v) + " outside [0, 1] or non-finite, set to " + num(fixed));
+        v = fixed;
+    };
+    unit(m.metallic, 1.0f, "metallicFactor");
+    unit(m.roughness, 1.0f, "roughnessFactor");
+    unit(m.occlusionStrength, 1.0f, "occlusion strength");
+    unit(m.dielectricF0, 0.04f, "dielectric F0");
+    if (!std::isfinite(m.normalScale)) {
+        note(w, who + "non-finite normal texture scale, set to 1");
+        m.normalScale = 1.0f;
+    }
 }
 
 void validateScene(Scene& s) {

@@ -13,7 +13,8 @@
 //           negative or NaN range: infinite; spot cones: outer clamped to (0, pi/2], inner to [0, outer], an
 //           inner cone larger than the outer one is swapped with it.
 //   material baseColorFactor outside [0, 1] or non-finite: clamped (the G-buffer stores albedo in RGBA8, so the
-//           renderer has always clamped it); negative or non-finite emissiveFactor: 0.
+//           renderer has always clamped it); negative or non-finite emissiveFactor: 0; metallic, roughness,
+//           occlusion strength outside [0, 1]: clamped (non-finite: 1); non-finite normal scale: 1.
 #include "renderer/scene/scene.h"
 
 #include <string>
