@@ -1,6 +1,7 @@
 // The scene tree (issue 14): nodes kept at load, live transforms, visibility, the Object ID buffer and picking.
 #include "gl_fixture.h"
 
+#include "renderer/passes/buffer_view_pass.h"
 #include "renderer/probes/probe_tracer.h"
 #include "renderer/reference/path_tracer.h"
 #include "renderer/scene/scene_loader.h"
@@ -181,4 +182,35 @@ TEST_F(GLTest, ShadowFollowsAMovedObject) {
     EXPECT_NEAR(after.at(x, y, 0), after.at(4, y, 0), 0.05f * after.at(4, y, 0));  // the old shadow is gone
     EXPECT_LT(after.at(32 + 12, y, 0), 0.2f * after.at(4, y, 0));  // x = 0.87: in the new shadow
     EXPECT_EQ(r.objectAt(32 + 12, y), scene->parts[0].node);       // ... on the floor
+}
+
+// The inspector's view of the Object ID buffer (an integer texture): one colour per node, black for the sky; its
+// texel readout gives the ids.
+TEST_F(GLTest, ObjectIdBufferIsShownByTheBufferView) {
+    auto scene = floorAndBox();
+    const int box = nodeNamed(*scene, "box"), floorNode = scene->parts[0].node;
+    // The camera sees sky above the horizon: look along the floor.
+    scene->cameras[0].cameraToWorld = glm::inverse(glm::lookAt(glm::vec3(0, 0.5f, 2.5f), glm::vec3(0, 0.3f, 0), glm::vec3(0, 1, 0)));
+    auto renderer = rendererFor(scene, 64, 48, "top");
+    Settings s;
+    s.indirect = false;
+    renderer->render(s);
+    const BufferSource src = bufferSource(renderer->textures(), "Object ID 1");
+    ASSERT_TRUE(src.valid());
+    EXPECT_EQ(src.vis, Visualize::ObjectId);
+    BufferViewPass view;
+    view.draw(renderer->shaders(), src, nullptr, BufferViewParams{}, 64, 48);
+    std::vector<unsigned char> px(64 * 48 * 4);
+    glGetTextureImage(view.texture(), 0, GL_RGBA, GL_UNSIGNED_BYTE, GLsizei(px.size()), px.data());
+    auto colour = [&](int x, int yTop) { const unsigned char* p = &px[(size_t(47 - yTop) * 64 + x) * 4]; return glm::ivec3(p[0], p[1], p[2]); };
+    const int boxY = 24, floorY = 46, skyY = 1;
+    ASSERT_EQ(renderer->objectAt(32, boxY), box);
+    ASSERT_EQ(renderer->objectAt(32, floorY), floorNode);
+    ASSERT_EQ(renderer->objectAt(32, skyY), -1);
+    EXPECT_EQ(colour(32, skyY), glm::ivec3(0));
+    EXPECT_NE(colour(32, boxY), colour(32, floorY));
+    EXPECT_NE(colour(32, boxY), glm::ivec3(0));
+    const TexelBlock t = BufferViewPass::readTexels(src, 32, 47 - boxY, 1, 1);
+    ASSERT_EQ(t.channels, 1);
+    EXPECT_EQ(int(t.values[0]), box + 1);
 }
