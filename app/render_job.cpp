@@ -50,12 +50,14 @@ RenderJobResult runRenderJob(const RenderJob& job) {
     if (job.timeSet && !animate) {  // the scene at that instant, every frame
         applyAnimation(*scene, float(job.time));
         renderer.sceneChanged(SceneChange::Transforms | SceneChange::Lights);
+        if (job.cameraFile.empty() && !scene->cameras.empty()) renderer.setCamera(selectCamera(*scene, job.camera));
     }
     std::filesystem::create_directories(job.outDir);
     for (int f = 0; f < job.frames; ++f) {
         if (animate) {
             applyAnimation(*scene, float(job.time + double(f) / job.animateFps));
             renderer.sceneChanged(SceneChange::Transforms);
+            if (job.cameraFile.empty() && !scene->cameras.empty()) renderer.setCamera(selectCamera(*scene, job.camera));  // an animated camera node
         }
         renderer.render(job.settings);
         if (job.sequence) {

@@ -89,7 +89,7 @@ BufferSource bufferSource(const TextureRegistry& registry, const std::string& la
 int BufferViewPass::channelCount(GLenum format) {
     if (gl::isDepthFormat(format)) return 1;
     switch (format) {
-        case GL_R8: case GL_R16F: case GL_R32F: case GL_R8_SNORM: case GL_R16_SNORM: return 1;
+        case GL_R8: case GL_R16F: case GL_R32F: case GL_R8_SNORM: case GL_R16_SNORM: case GL_R32UI: return 1;
         case GL_RG8: case GL_RG8_SNORM: case GL_RG16F: case GL_RG32F: case GL_RG16_SNORM: return 2;
         case GL_RGB8: case GL_R11F_G11F_B10F: case GL_RGB16F: case GL_RGB32F: case GL_SRGB8: return 3;
         default: return 4;

@@ -6,10 +6,14 @@
 #define STB_IMAGE_WRITE_IMPLEMENTATION
 #include <stb/stb_image_write.h>
 
+#include <nlohmann/json.hpp>
+
 #include <algorithm>
 #include <cctype>
 #include <cmath>
 #include <cstring>
+#include <fstream>
+#include <iterator>
 #include <stdexcept>
 
 namespace deepgi {
@@ -304,6 +308,51 @@ private:
     }
 };
 
+// tinygltf writes a perspective camera's zfar even when it is 0 (infinite, glTF: leave it out), which the glTF
+// validator rejects: the written JSON is patched, in the .gltf or in the .glb's JSON chunk.
+void dropInfiniteZfar(nlohmann::json& j) {
+    if (!j.contains("cameras")) return;
+    for (auto& c : j["cameras"])
+        if (c.contains("perspective") && c["perspective"].contains("zfar") && c["perspective"]["zfar"].is_number() &&
+            !(c["perspective"]["zfar"].get<double>() > 0.0))
+            c["perspective"].erase("zfar");
+}
+
+void patchWrittenFile(const std::string& path, bool binary) {
+    std::ifstream in(path, std::ios::binary);
+    std::vector<char> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    in.close();
+    auto le32 = [&](size_t o) { uint32_t v; std::memcpy(&v, &bytes[o], 4); return v; };
+    std::string json, rest;
+    if (binary) {
+        if (bytes.size() < 20) throw std::runtime_error(path + ": the written GLB is truncated");
+        const uint32_t jsonLen = le32(12);
+        if (20 + size_t(jsonLen) > bytes.size()) throw std::runtime_error(path + ": the written GLB is truncated");
+        json.assign(&bytes[20], jsonLen);
+        rest.assign(bytes.begin() + 20 + jsonLen, bytes.end());  // the BIN chunk, as written
+    } else {
+        json.assign(bytes.begin(), bytes.end());
+    }
+    nlohmann::json j = nlohmann::json::parse(json, nullptr, false);
+    if (j.is_discarded()) throw std::runtime_error(path + ": the written JSON does not parse");
+    dropInfiniteZfar(j);
+    std::string out = binary ? j.dump() : j.dump(2);
+    std::ofstream o(path, std::ios::binary | std::ios::trunc);
+    if (binary) {
+        while (out.size() % 4) out.push_back(' ');
+        auto put32 = [&](uint32_t v) { o.write(reinterpret_cast<const char*>(&v), 4); };
+        o.write("glTF", 4);
+        put32(2);
+        put32(uint32_t(12 + 8 + out.size() + rest.size()));
+        put32(uint32_t(out.size()));
+        put32(0x4E4F534Au);  // "JSON"
+        o << out << rest;
+    } else {
+        o << out;
+    }
+    if (!o) throw std::runtime_error(path + ": cannot rewrite the written file");
+}
+
 bool endsWithGlb(const std::string& p) {
     if (p.size() < 4) return false;
     std::string e = p.substr(p.size() - 4);
@@ -320,6 +369,7 @@ void saveGltf(const Scene& scene, const std::string& path) {
     // Buffers: inside the .glb, else a .bin beside the .gltf; images live in buffer views (PNG) either way.
     if (!io.WriteGltfSceneToFile(&model, path, false, false, true, binary))
         throw std::runtime_error(path + ": cannot write the glTF file (folder missing or not writable?)");
+    patchWrittenFile(path, binary);
 }
 
 }  // namespace deepgi
