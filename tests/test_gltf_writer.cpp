@@ -43,6 +43,9 @@ std::shared_ptr<Scene> editedScene() {
     s->materials[2].alphaMode = AlphaMode::Mask;
     s->materials[2].alphaCutoff = 0.3f;
     s->materials[2].doubleSided = true;
+    s->materials[1].metallic = 0.7f;  // the metallic-roughness model survives, Lambertian F0 (0) included
+    s->materials[1].roughness = 0.35f;
+    s->materials[1].dielectricF0 = 0.04f;
     Light p;
     p.name = "lamp";
     p.type = LightType::Point;
@@ -105,6 +108,9 @@ TEST_F(GLTest, SaveThenLoadGivesTheSameScene) {
             EXPECT_EQ(int(ma.alphaMode), int(mb.alphaMode));
             EXPECT_FLOAT_EQ(ma.alphaCutoff, mb.alphaCutoff);
             EXPECT_EQ(ma.doubleSided, mb.doubleSided);
+            EXPECT_FLOAT_EQ(ma.metallic, mb.metallic);
+            EXPECT_FLOAT_EQ(ma.roughness, mb.roughness);
+            EXPECT_NEAR(ma.dielectricF0, mb.dielectricF0, 1e-7f);
         }
         ASSERT_EQ(b->images.size(), 1u);
         EXPECT_EQ(b->images[0].rgba8, a->images[0].rgba8);  // PNG is lossless

@@ -327,7 +327,7 @@ void GltfReader::parse() {
 
 const std::set<std::string>& supportedExtensions() {
     static const std::set<std::string> supported = {
-        "KHR_lights_punctual", "KHR_materials_emissive_strength", "KHR_node_visibility", "KHR_mesh_quantization", "KHR_texture_transform",
+        "KHR_lights_punctual", "KHR_materials_emissive_strength", "KHR_materials_specular", "KHR_node_visibility", "KHR_mesh_quantization", "KHR_texture_transform",
         "KHR_draco_mesh_compression", "EXT_meshopt_compression"};
     return supported;
 }

@@ -199,6 +199,16 @@ void GltfReader::loadPbrTextures(const tinygltf::Material& gm, Material& m, UvSe
     m.metallic = finiteOr(pbr.metallicFactor, 1.0f);    // validateMaterial clamps to [0, 1]
     m.roughness = finiteOr(pbr.roughnessFactor, 1.0f);
     m.dielectricF0 = 0.04f;                             // glTF: a dielectric's ior is 1.5
+    // KHR_materials_specular's scalar strength (what saveGltf writes for a Lambertian material: factor 0); its
+    // colour and textures are not modelled and say so.
+    auto spec = gm.extensions.find("KHR_materials_specular");
+    if (spec != gm.extensions.end() && spec->second.IsObject()) {
+        const auto& e = spec->second;
+        if (e.Has("specularFactor") && e.Get("specularFactor").IsNumber())
+            m.dielectricF0 = 0.04f * std::clamp(finiteOr(e.Get("specularFactor").GetNumberAsDouble(), 1.0f), 0.0f, 1.0f);
+        if (e.Has("specularColorFactor") || e.Has("specularTexture") || e.Has("specularColorTexture"))
+            warn(user + ": KHR_materials_specular's colour and textures are ignored (only specularFactor is used)");
+    }
     m.metallicRoughnessTexture = resolveTexture(pbr.metallicRoughnessTexture.index, user, false);
     m.normalTexture = resolveTexture(gm.normalTexture.index, user, false);
     m.normalScale = finiteOr(gm.normalTexture.scale, 1.0f);

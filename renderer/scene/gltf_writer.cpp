@@ -45,7 +45,7 @@ private:
     tinygltf::Model m_;
     std::vector<int> roots_;
     std::vector<int> extraLightNodes_;  // lights without a node get one of their own (glTF places lights by nodes)
-    bool usedLights_ = false, usedEmissiveStrength_ = false, usedVisibility_ = false;
+    bool usedLights_ = false, usedEmissiveStrength_ = false, usedVisibility_ = false, usedSpecular_ = false;
 
     void align4() {
         auto& d = m_.buffers[0].data;
@@ -132,8 +132,21 @@ private:
             gm.name = mat.name;
             gm.pbrMetallicRoughness.baseColorFactor = {mat.baseColorFactor.x, mat.baseColorFactor.y, mat.baseColorFactor.z, mat.baseColorFactor.w};
             gm.pbrMetallicRoughness.baseColorTexture.index = mat.baseColorTexture;
-            gm.pbrMetallicRoughness.metallicFactor = 0.0;  // deepgi shades Lambertian: a rough dielectric elsewhere too
-            gm.pbrMetallicRoughness.roughnessFactor = 1.0;
+            gm.pbrMetallicRoughness.metallicFactor = mat.metallic;
+            gm.pbrMetallicRoughness.roughnessFactor = mat.roughness;
+            gm.pbrMetallicRoughness.metallicRoughnessTexture.index = mat.metallicRoughnessTexture;
+            gm.normalTexture.index = mat.normalTexture;
+            gm.normalTexture.scale = mat.normalScale;
+            gm.occlusionTexture.index = mat.occlusionTexture;
+            gm.occlusionTexture.strength = mat.occlusionStrength;
+            // glTF's dielectric F0 is 0.04; another one (0 for the Lambertian materials of OBJ and built-in scenes)
+            // goes into KHR_materials_specular's factor, which the loader reads back.
+            if (std::abs(mat.dielectricF0 - 0.04f) > 1e-6f) {
+                tinygltf::Value::Object o;
+                o["specularFactor"] = tinygltf::Value(double(std::clamp(mat.dielectricF0 / 0.04f, 0.0f, 1.0f)));
+                gm.extensions["KHR_materials_specular"] = tinygltf::Value(o);
+                usedSpecular_ = true;
+            }
             // emissiveFactor is limited to [0, 1]: the rest goes into KHR_materials_emissive_strength.
             const float peak = std::max({mat.emissiveFactor.x, mat.emissiveFactor.y, mat.emissiveFactor.z});
             const float strength = peak > 1.0f ? peak : 1.0f;
@@ -282,6 +295,7 @@ private:
         }
         if (usedLights_) m_.extensionsUsed.push_back("KHR_lights_punctual");
         if (usedEmissiveStrength_) m_.extensionsUsed.push_back("KHR_materials_emissive_strength");
+        if (usedSpecular_) m_.extensionsUsed.push_back("KHR_materials_specular");
         if (usedVisibility_) m_.extensionsUsed.push_back("KHR_node_visibility");
     }
 
