@@ -100,6 +100,7 @@ CommandRegistrar registrar("bench", "Speed against error: sweep configurations a
     sub.add_flag("--no-path", a->noPath, "--suite hard: skip the camera path");
     sub.add_option("--whole-frame-size", a->wholeSize, "Size of the whole-frame check of the first scene, balanced preset (0x0 = skip)")->capture_default_str();
     sub.add_option("--out", a->o.outDir, "Output folder (--suite hard: out/bench_hard)")->capture_default_str();
+    sub.add_option("--environment", a->o.environment, "Equirectangular environment map for every scene (EXR, HDR, ... via OpenImageIO): seen and lighting, in the renderer and the references");
     sub.add_option("--cache", a->o.cacheDir, "Reference cache folder (default: OUT/cache)");
     sub.add_option("--shaders", a->o.shaderDir, "Shader folder (default: the source tree's shaders/)");
     sub.add_flag("--quiet", a->o.quiet, "No progress output");

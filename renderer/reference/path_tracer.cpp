@@ -3,6 +3,7 @@
 
 #include "renderer/scene/scene_validation.h"
 
+#include "renderer/scene/environment_map.h"
 #include "renderer/scene/lighting.h"
 
 #include <embree3/rtcore.h>
@@ -132,6 +133,12 @@ glm::vec3 cosineHemisphere(const glm::vec3& n, float u1, float u2) {
 }
 
 float maxComponent(const glm::vec3& v) { return std::max({v.x, v.y, v.z}); }
+
+// Power heuristic (beta = 2) weight of a strategy of density pa against one of density pb.
+float powerHeuristic(float pa, float pb) {
+    const float a = pa * pa, b = pb * pb;
+    return a + b > 0.0f ? a / (a + b) : 0.0f;
+}
 
 std::string formatDuration(double s) {
     if (!std::isfinite(s) || s < 0.0) return "--";
@@ -290,28 +297,63 @@ struct ReferenceTracer::Impl {
     // One path through the scene. Adds to direct (what the camera sees directly plus direct light at the first
     // hit) and indirect (everything after the first bounce).
     // The camera ray runs from the near to the far clip plane (clipNear/clipFar along it), as the rasterizer clips.
+    // Next-event estimation of the environment map at s: one direction drawn from the map's density, weighted by
+    // the power heuristic against the cosine (BSDF) sampling of the bounce that follows (weight 1 when none
+    // follows: the last bounce). Returns the outgoing radiance (albedo/pi x L x cos / pdf x weight).
+    glm::vec3 environmentNee(const Surface& s, const EnvironmentLight& env, Pcg32& rng, bool bounceFollows,
+                             uint64_t& rays) const {
+        if (!env.sampled()) return glm::vec3(0.0f);
+        const float u1 = rng.uniform(), u2 = rng.uniform();
+        const EnvironmentLight::Sample es = env.sample(u1, u2);
+        const float cosTheta = glm::dot(s.normal, es.direction);
+        // The same directions the bounce may take: above both the shading and the geometric surface.
+        if (!(es.pdf > 0.0f) || !(cosTheta > 0.0f) || !(glm::dot(es.direction, s.geomNormal) > 0.0f)) return glm::vec3(0.0f);
+        if (!(maxComponent(es.radiance) > 0.0f)) return glm::vec3(0.0f);
+        ++rays;
+        if (occluded(offsetOrigin(s.position, s.geomNormal), es.direction, kInf)) return glm::vec3(0.0f);
+        const float bsdfPdf = cosTheta * kInvPi;
+        const float w = bounceFollows ? powerHeuristic(es.pdf, bsdfPdf) : 1.0f;
+        return s.albedo * kInvPi * es.radiance * (cosTheta * w / es.pdf);
+    }
+
     void tracePath(glm::vec3 origin, glm::vec3 dir, float clipNear, float clipFar, Pcg32& rng,
-                   const std::vector<Light>& lights, float background, int maxBounces, glm::vec3& direct,
-                   glm::vec3& indirect, uint64_t& rays) const {
+                   const std::vector<Light>& lights, float background, const EnvironmentLight& env, int maxBounces,
+                   glm::vec3& direct, glm::vec3& indirect, uint64_t& rays) const {
         glm::vec3 throughput(1.0f);
+        float bouncePdf = 0.0f;  // density (solid angle) of the cosine sampling that chose dir, after depth 0
         for (int depth = 0;; ++depth) {
             RTCRayHit rh;
             ++rays;
             const bool hit = depth == 0 ? intersect(origin, dir, rh, clipNear, clipFar) : intersect(origin, dir, rh);
             if (!hit) {
-                if (depth == 0) direct += glm::vec3(background);
+                // Escaped: the environment (and for camera rays the backdrop). A bounce ray's share is weighted
+                // against the map's next-event estimation at the vertex it left. Light arriving at the first hit
+                // straight from the sky is direct light there.
+                if (depth == 0) direct += glm::vec3(background) + env.radiance(dir);
+                else if (env.enabled()) {
+                    // Both faces of every surface block the sky, as they block shadow rays and the probes' rays
+                    // (bounce rays pass through single-sided back faces): the map's next-event estimation and
+                    // this share then see the same visibility.
+                    ++rays;
+                    if (!occluded(origin, dir, kInf)) {
+                        const float w = env.sampled() ? powerHeuristic(bouncePdf, env.pdf(dir)) : 1.0f;
+                        (depth == 1 ? direct : indirect) += throughput * env.radiance(dir) * w;
+                    }
+                }
                 return;
             }
             const Surface s = shade(rh, dir);
             glm::vec3& acc = depth == 0 ? direct : indirect;
             const glm::vec3 e = directIrradiance(s, lights, rays);
             acc += throughput * (s.emission + s.albedo * kInvPi * e);
+            if (env.sampled()) acc += throughput * environmentNee(s, env, rng, depth < maxBounces, rays);
             if (depth >= maxBounces) return;
 
             const float u1 = rng.uniform(), u2 = rng.uniform();
             const glm::vec3 wi = cosineHemisphere(s.normal, u1, u2);
             // Directions below the geometric surface (possible with interpolated normals) end the path.
             if (!(glm::dot(wi, s.geomNormal) > 0.0f)) return;
+            bouncePdf = std::max(glm::dot(wi, s.normal), 0.0f) * kInvPi;
             throughput *= s.albedo;  // f * cos / pdf = (albedo/pi) * cos / (cos/pi)
             if (depth + 1 > kRouletteAfter) {
                 const float survive = std::min(0.95f, maxComponent(s.albedo));
@@ -391,6 +433,7 @@ ReferenceResult ReferenceTracer::render(const Camera& camera, const Settings& se
     const glm::vec3 forward = camera.forward();
     const std::vector<Light> lights = effectiveLights(impl_->scene, settings);
     const float background = settings.background;
+    const EnvironmentLight env(impl_->scene.environment.get(), settings, true);
     const int W = opt.width, H = opt.height;
     const int tilesX = (W + kTile - 1) / kTile, tilesY = (H + kTile - 1) / kTile, nTiles = tilesX * tilesY;
     int nThreads = opt.threads > 0 ? opt.threads : int(std::thread::hardware_concurrency());
@@ -428,7 +471,7 @@ ReferenceResult ReferenceTracer::render(const Camera& camera, const Settings& se
                             glm::vec3 direct(0.0f), indirect(0.0f);
                             const float along = std::max(glm::dot(d, forward), 1e-6f);  // 1 for orthographic
                             impl_->tracePath(o, d, camera.znear / along, camera.zfar / along, rng, lights, background,
-                                             opt.maxBounces, direct, indirect, rays);
+                                             env, opt.maxBounces, direct, indirect, rays);
                             const glm::dvec3 f = glm::dvec3(direct) + glm::dvec3(indirect);
                             sumD += glm::dvec3(direct);
                             sumI += glm::dvec3(indirect);

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -93,6 +94,8 @@ struct CameraDesc {
     glm::mat4 cameraToWorld{1.0f};   // looks down -Z, +Y up (glTF convention)
 };
 
+struct EnvironmentMap;  // renderer/scene/environment_map.h
+
 struct Scene {
     std::string sourcePath;  // file it came from ("" for scenes built in code)
     std::vector<MeshPart> parts;
@@ -103,6 +106,9 @@ struct Scene {
     std::vector<CameraDesc> cameras;
     std::vector<std::string> warnings;
     Aabb bounds;
+    // The equirectangular environment map (--environment FILE), null = none: what rays leaving the scene see
+    // and are lit by, with environment.* (renderer/scene/environment_map.h).
+    std::shared_ptr<const EnvironmentMap> environment;
     uint64_t loadPeakBytes = 0;  // most memory the loader held at once (its own count, see GltfLoadOptions)
 
     size_t triangleCount() const {
