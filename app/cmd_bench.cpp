@@ -108,7 +108,11 @@ CommandRegistrar registrar("bench", "Speed against error: sweep configurations a
     sub.add_option("--context", a->o.context, "OpenGL context: osmesa (llvmpipe) or egl (headless EGL: Mesa surfaceless or a GPU)")->capture_default_str();
     a->settings.add(sub);
     return [a, &sub]() {
-        if (a->suite == "hard") return runHard(*a, sub);
+        if (a->suite == "hard") {
+            if (!a->o.environment.empty())
+                throw std::runtime_error("bench: --environment applies to the standard suite (the hard scenes have their own lights)");
+            return runHard(*a, sub);
+        }
         if (a->list) {
             for (const auto& c : bench::defaultConfigs()) std::printf("%-20s %s\n", c.name.c_str(), c.description.c_str());
             return 0;

@@ -17,6 +17,7 @@
 #include <filesystem>
 #include <fstream>
 #include <random>
+#include <sstream>
 
 using namespace deepgi;
 using namespace deepgi::procedural;
@@ -527,4 +528,113 @@ TEST(EnvironmentCli, RenderAndReferenceTakeTheMap) {
         EXPECT_GT(sum / img.pixels.size(), 0.05) << cmd << ": the map lights and shows";
     }
     fs::remove_all(dir);
+}
+
+// ---- The GLSL sky lookup against the C++ one ----------------------------------------------------------------
+
+namespace {
+
+std::string readShader(const std::string& name) {
+    std::ifstream f(std::string(DEEPGI_SHADER_DIR) + "/" + name);
+    std::stringstream ss;
+    ss << f.rdbuf();
+    return ss.str();
+}
+
+GLuint compileShader(GLenum type, const std::string& src) {
+    GLuint sh = glCreateShader(type);
+    const char* p = src.c_str();
+    glShaderSource(sh, 1, &p, nullptr);
+    glCompileShader(sh);
+    GLint ok = 0;
+    glGetShaderiv(sh, GL_COMPILE_STATUS, &ok);
+    if (!ok) {
+        char log[4096];
+        glGetShaderInfoLog(sh, sizeof log, nullptr, log);
+        ADD_FAILURE() << log;
+    }
+    return sh;
+}
+
+}  // namespace
+
+// shaders/environment.glsl's probeSkyIrradiance() against ProbeVolume::skyIrradiance() on the open-sky asset
+// under the test map: within 2% (GL's bilinear filtering weights have 8 bits of fraction).
+TEST_F(GLTest, SkyShaderMatchesTheCpp) {
+    Scene scene = loadScene(kAssets + "/open_sky.gltf");
+    attachEnvironment(scene, kAssets + "/sky_test.hdr");
+    const Settings s = fastProbes(skyOnly(0.5f));
+    ProbeVolume v(scene, s);
+    for (int i = 0; i < 4; ++i) v.update(s);
+    ASSERT_TRUE(v.hasSky());
+    std::vector<glm::vec3> ps, ns;
+    for (int i = 0; i < 12; ++i) {
+        const float t = -1.0f + 2.0f * float(i) / 11.0f;
+        ps.push_back({2.0f * t, 0.0f, 1.5f * t}); ns.push_back({0, 1, 0});
+        ps.push_back({0.5f * std::cos(3.0f * t), 0.5f + 0.45f * t, 0.5f * std::sin(3.0f * t)});
+        ns.push_back(glm::normalize(ps.back() - glm::vec3(0, 0.5f, 0)));
+        ps.push_back({0.9f, 0.3f + 0.25f * t, -0.6f + 0.25f * t}); ns.push_back({-1, 0, 0});
+    }
+    const int N = int(ps.size());
+    std::vector<ProbeTextureDesc> descs = v.textures();
+    descs.push_back(v.skyTexture());
+    std::vector<gl::TextureHandle> tex;
+    for (const ProbeTextureDesc& d : descs) {
+        tex.push_back(gl::createTexture(GL_TEXTURE_2D, d.name));
+        glTextureStorage2D(tex.back().id(), 1, d.internalFormat, d.width, d.height);
+        const GLenum filter = d.name == "Probe Data" ? GL_NEAREST : GL_LINEAR;
+        glTextureParameteri(tex.back().id(), GL_TEXTURE_MIN_FILTER, filter);
+        glTextureParameteri(tex.back().id(), GL_TEXTURE_MAG_FILTER, filter);
+        glTextureParameteri(tex.back().id(), GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+        glTextureParameteri(tex.back().id(), GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    }
+    v.uploadSkyTexture(tex[3].id(), true);
+    v.uploadTextures(tex[0].id(), tex[1].id(), tex[2].id(), true);
+    gl::BufferHandle ubo = gl::createBuffer("probe uniforms");
+    glNamedBufferStorage(ubo.id(), sizeof(ProbeVolumeUniforms), nullptr, GL_DYNAMIC_STORAGE_BIT);
+    v.uploadUniforms(ubo.id());
+    glBindBufferBase(GL_UNIFORM_BUFFER, 2, ubo.id());
+    glBindTextureUnit(2, tex[0].id());
+    glBindTextureUnit(3, tex[1].id());
+    glBindTextureUnit(5, tex[2].id());
+    glBindTextureUnit(6, tex[3].id());
+    const std::string fs = "#version 450 core\n#define PROBE_VOLUME_FIXED_UNITS\n#define DEEPGI_SKY\n" +
+                           readShader("common.glsl") + readShader("probe_volume.glsl") + readShader("environment.glsl") +
+                           "uniform vec3 uPoints[" + std::to_string(N) + "];\nuniform vec3 uNormals[" + std::to_string(N) +
+                           "];\nout vec4 oColor;\nvoid main() { int i = int(gl_FragCoord.x);\n"
+                           "  oColor = vec4(probeSkyIrradiance(uPoints[i], uNormals[i]), 1.0); }\n";
+    GLuint prog = glCreateProgram();
+    GLuint v1 = compileShader(GL_VERTEX_SHADER, readShader("fullscreen.vert")), f1 = compileShader(GL_FRAGMENT_SHADER, fs);
+    glAttachShader(prog, v1);
+    glAttachShader(prog, f1);
+    glLinkProgram(prog);
+    GLint linked = 0;
+    glGetProgramiv(prog, GL_LINK_STATUS, &linked);
+    ASSERT_TRUE(linked);
+    glProgramUniform1i(prog, glGetUniformLocation(prog, "uProbeSky"), 6);
+    glProgramUniform3fv(prog, glGetUniformLocation(prog, "uPoints"), N, &ps[0].x);
+    glProgramUniform3fv(prog, glGetUniformLocation(prog, "uNormals"), N, &ns[0].x);
+    gl::TextureHandle target = gl::createTexture(GL_TEXTURE_2D, "sky test target");
+    glTextureStorage2D(target.id(), 1, GL_RGBA32F, N, 1);
+    gl::FramebufferHandle fbo = gl::createFramebuffer("sky test");
+    glNamedFramebufferTexture(fbo.id(), GL_COLOR_ATTACHMENT0, target.id(), 0);
+    glBindFramebuffer(GL_FRAMEBUFFER, fbo.id());
+    glViewport(0, 0, N, 1);
+    gl::VertexArrayHandle vao = gl::createVertexArray("sky test");
+    glBindVertexArray(vao.id());
+    glUseProgram(prog);
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+    std::vector<float> out(size_t(N) * 4);
+    glGetTextureImage(target.id(), 0, GL_RGBA, GL_FLOAT, GLsizei(out.size() * sizeof(float)), out.data());
+    glDeleteProgram(prog);
+    glDeleteShader(v1);
+    glDeleteShader(f1);
+    int lit = 0;
+    for (int i = 0; i < N; ++i) {
+        const glm::vec3 E = v.skyIrradiance(ps[i], ns[i]);
+        const float scale = std::max({E.x, E.y, E.z, 1e-3f});
+        for (int c = 0; c < 3; ++c) EXPECT_NEAR(out[4 * i + c], E[c], 0.02f * scale + 1e-4f) << "point " << i << " channel " << c;
+        lit += E.x > 0.1f;
+    }
+    EXPECT_GT(lit, N / 2);
 }
