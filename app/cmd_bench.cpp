@@ -100,6 +100,7 @@ CommandRegistrar registrar("bench", "Speed against error: sweep configurations a
     sub.add_flag("--no-path", a->noPath, "--suite hard: skip the camera path");
     sub.add_option("--whole-frame-size", a->wholeSize, "Size of the whole-frame check of the first scene, balanced preset (0x0 = skip)")->capture_default_str();
     sub.add_option("--out", a->o.outDir, "Output folder (--suite hard: out/bench_hard)")->capture_default_str();
+    sub.add_option("--environment", a->o.environment, "Equirectangular environment map for every scene (EXR, HDR, ... via OpenImageIO): seen and lighting, in the renderer and the references");
     sub.add_option("--cache", a->o.cacheDir, "Reference cache folder (default: OUT/cache)");
     sub.add_option("--shaders", a->o.shaderDir, "Shader folder (default: the source tree's shaders/)");
     sub.add_flag("--quiet", a->o.quiet, "No progress output");
@@ -107,7 +108,11 @@ CommandRegistrar registrar("bench", "Speed against error: sweep configurations a
     sub.add_option("--context", a->o.context, "OpenGL context: osmesa (llvmpipe) or egl (headless EGL: Mesa surfaceless or a GPU)")->capture_default_str();
     a->settings.add(sub);
     return [a, &sub]() {
-        if (a->suite == "hard") return runHard(*a, sub);
+        if (a->suite == "hard") {
+            if (!a->o.environment.empty())
+                throw std::runtime_error("bench: --environment applies to the standard suite (the hard scenes have their own lights)");
+            return runHard(*a, sub);
+        }
         if (a->list) {
             for (const auto& c : bench::defaultConfigs()) std::printf("%-20s %s\n", c.name.c_str(), c.description.c_str());
             return 0;

@@ -5,6 +5,7 @@
 #include "renderer/core/image_io.h"
 #include "renderer/core/settings.h"
 #include "renderer/reference/path_tracer.h"
+#include "renderer/scene/environment_map.h"
 #include "renderer/scene/scene_loader.h"
 
 #include <nlohmann/json.hpp>
@@ -34,6 +35,7 @@ struct ReferenceArgs {
     std::vector<std::string> assignments;
     std::string preset;
     std::string out = "out/reference";
+    std::string environment;
     bool quiet = false;
 };
 
@@ -55,6 +57,7 @@ int runReference(const ReferenceArgs& a) {
 
     Scene scene = loadScene(a.scene, gltfLoadOptions(settings));
     if (!scene.bounds.valid()) scene.computeBounds();
+    attachEnvironment(scene, a.environment);
     for (const std::string& w : scene.warnings) std::fprintf(stderr, "deepgi: warning: %s\n", w.c_str());
     const Camera camera = selectCamera(scene, a.camera, a.cameraFile);
 
@@ -94,6 +97,7 @@ int runReference(const ReferenceArgs& a) {
     j["noise_note"] = "per-pixel standard error of the mean of the grey value (r+g+b)/3 divided by its mean, "
                       "averaged over pixels with mean > 1e-3; per-channel standard error in stderr.exr";
     j["files"] = {"final.exr", "direct.exr", "indirect.exr", "stderr.exr", "final.png"};
+    if (!a.environment.empty()) j["environment"] = a.environment;
     j["settings"] = settingsToJson(settings);
     const std::string jsonPath = (dir / "reference.json").string();
     std::ofstream f(jsonPath);
@@ -124,6 +128,7 @@ const CommandRegistrar kReference(
             ->allow_extra_args(false);
         sub.add_option("--preset", a->preset, "Settings preset applied before --set");
         sub.add_option("--out", a->out, "Output directory")->capture_default_str();
+        sub.add_option("--environment", a->environment, "Equirectangular environment map (EXR, HDR, ... via OpenImageIO; +Y up, u = 0.5 along +X), importance-sampled");
         sub.add_flag("--quiet", a->quiet, "No progress output");
         return [a] { return runReference(*a); };
     });

@@ -18,6 +18,7 @@ CommandRegistrar registrar("render", "Render a glTF scene headless (OSMesa) to a
     sub.add_option("--camera", job->camera, "glTF camera name (default: the scene's first, else a framing camera)");
     sub.add_option("--camera-file", job->cameraFile, "Camera from a JSON file (a viewer capture's camera.json); wins over --camera");
     sub.add_option("--buffers", job->buffers, "Buffers to dump as EXR: all, or comma-separated layer names (see `deepgi buffers`)");
+    sub.add_option("--environment", job->environment, "Equirectangular environment map (EXR, HDR, ... via OpenImageIO; +Y up, u = 0.5 along +X): seen as the backdrop, lights the scene (environment.*)");
     sub.add_option("--out", job->outDir, "Output folder")->capture_default_str();
     sub.add_option("--shaders", job->shaderDir, "Shader folder (default: the source tree's shaders/)");
     sub.add_option("--context", job->context, "OpenGL context: osmesa (llvmpipe) or egl (headless EGL: Mesa surfaceless or a GPU)")->capture_default_str();

@@ -18,6 +18,7 @@ CommandRegistrar registrar("view", "Interactive viewer: Blender-style navigation
     sub.add_option("--size", *size, "Window size WxH (default: the last one, else 1280x720)");
     sub.add_option("--camera", opt->camera, "Start from this glTF camera");
     sub.add_option("--camera-file", opt->cameraFile, "Start from the camera in a JSON file (a capture's camera.json)");
+    sub.add_option("--environment", opt->environment, "Equirectangular environment map (EXR, HDR, ... via OpenImageIO; +Y up, u = 0.5 along +X): seen as the backdrop, lights the scene (environment.*)");
     sub.add_option("--script", opt->scriptPath, "Run timed actions from FILE and exit at its end (see ui/script.h)");
     sub.add_option("--shaders", opt->shaderDir, "Shader folder (default: the source tree's shaders/); edits reload live");
     sub.add_option("--screenshots", opt->screenshotDir, "Folder for F12 screenshots (default: $XDG_PICTURES_DIR/deepgi, ~/Pictures/deepgi or $XDG_DATA_HOME/deepgi/screenshots)");

@@ -6,6 +6,7 @@
 #include "renderer/core/util.h"
 #include "renderer/gl/offscreen_context.h"
 #include "renderer/renderer.h"
+#include "renderer/scene/environment_map.h"
 #include "renderer/scene/scene_loader.h"
 
 #include <nlohmann/json.hpp>
@@ -28,6 +29,7 @@ static std::string fileNameFor(const std::string& layer) {
 RenderJobResult runRenderJob(const RenderJob& job) {
     RenderJobResult result;
     auto scene = std::make_shared<Scene>(loadScene(job.scenePath, gltfLoadOptions(job.settings)));
+    attachEnvironment(*scene, job.environment);
     result.warnings = scene->warnings;
     result.triangles = scene->triangleCount();
     Camera camera = selectCamera(*scene, job.camera, job.cameraFile);

@@ -16,6 +16,7 @@ struct RenderJob {
     std::string buffers;  // "", "all" or comma-separated layer names
     std::string outDir = "out/render";
     std::string shaderDir;  // "" = the source tree's shaders/
+    std::string environment;  // --environment: an equirectangular map ("" = none)
     std::string context = "osmesa";  // or "egl" (renderer/gl/offscreen_context.h)
     double time = 0.0;        // --time: the glTF animations' clock (seconds) of the first frame
     bool timeSet = false;     // --time given

@@ -11,6 +11,7 @@
 
 #include "renderer/core/image_io.h"
 #include "renderer/probes/probe_volume.h"
+#include "renderer/scene/environment_map.h"
 #include "renderer/scene/scene_loader.h"
 
 #include <algorithm>
@@ -129,7 +130,11 @@ bool Viewer::init() {
     views_[0] = std::make_unique<BufferViewPass>();
     views_[1] = std::make_unique<BufferViewPass>();
 
-    scene_ = std::make_shared<Scene>(loadScene(opt_.scenePath));
+    {
+        Scene loaded = loadScene(opt_.scenePath);
+        attachEnvironment(loaded, opt_.environment);
+        scene_ = std::make_shared<Scene>(std::move(loaded));
+    }
     for (const auto& w : scene_->warnings) std::fprintf(stderr, "deepgi view: warning: %s\n", w.c_str());
     renderer_->setScene(scene_);
     for (const auto& c : scene_->cameras) view_.cameraNames.push_back(c.name);

@@ -8,6 +8,7 @@ namespace deepgi {
 
 struct ViewerOptions {
     std::string scenePath;
+    std::string environment;  // --environment: an equirectangular map ("" = none)
     std::string camera;          // glTF camera name ("" = restored view, else the scene's first camera)
     std::string cameraFile;      // --camera-file: a capture's camera.json (wins over camera)
     std::string scriptPath;      // --script: timed actions, exits at the end

@@ -7,6 +7,7 @@
 #include "renderer/gl/offscreen_context.h"
 #include "renderer/reference/path_tracer.h"
 #include "renderer/renderer.h"
+#include "renderer/scene/environment_map.h"
 #include "renderer/scene/scene_loader.h"
 
 #include <algorithm>
@@ -174,6 +175,7 @@ BenchResult runBench(const BenchOptions& o) {
         vd.view = v;
         auto scene = std::make_shared<Scene>(loadScene(v.scenePath));
         if (!scene->bounds.valid()) scene->computeBounds();
+        attachEnvironment(*scene, o.environment);
         const Camera cam = selectCamera(*scene, v.camera, v.cameraFile);
         Settings viewBase = o.base;
         for (const auto& a : v.assignments) applyAssignment(viewBase, a);
@@ -284,6 +286,7 @@ BenchResult runBench(const BenchOptions& o) {
     std::vector<std::pair<std::string, double>> wholePasses;
     if (o.wholeFrameWidth > 0 && o.wholeFrameHeight > 0) {
         auto scene = std::make_shared<Scene>(loadScene(o.views[0].scenePath));
+        attachEnvironment(*scene, o.environment);
         Renderer r(ropt);
         r.setScene(scene);
         r.resize(o.wholeFrameWidth, o.wholeFrameHeight);

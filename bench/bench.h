@@ -50,6 +50,7 @@ struct BenchOptions {
     std::vector<std::string> configs;  // names to run ("" = all)
     std::string outDir = "out/bench";
     std::string cacheDir;   // "" = outDir/cache
+    std::string environment;  // --environment: an equirectangular map for every view ("" = none)
     std::string shaderDir;  // "" = the source tree's
     Settings base;          // every configuration starts from these
     int wholeFrameWidth = 640, wholeFrameHeight = 360;  // 0 = skip the whole-frame check

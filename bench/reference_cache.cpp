@@ -4,6 +4,7 @@
 #include "bench/metrics.h"
 #include "renderer/core/util.h"
 #include "renderer/reference/path_tracer.h"
+#include "renderer/scene/environment_map.h"
 
 #include <nlohmann/json.hpp>
 
@@ -74,6 +75,14 @@ std::string referenceKey(const Scene& scene, const Camera& camera, const Setting
     for (int v : {width, height, spp, bounces}) h = fnv1aValue(h, v);
     h = fnv1aValue(h, seed);
     for (float v : {s.sunAzimuth, s.sunElevation, s.sunIntensity, s.lightScale, s.background}) h = fnv1aValue(h, v);
+    if (environmentOn(scene, s)) {  // the environment: its settings and the map's pixels
+        for (float v : {s.skyRadiance, s.environmentIntensity}) h = fnv1aValue(h, v);
+        if (scene.environment) {
+            h = fnv1aValue(h, scene.environment->width);
+            h = fnv1aValue(h, scene.environment->height);
+            h = fnv1a(h, scene.environment->rgb.data(), scene.environment->rgb.size() * sizeof(float));
+        }
+    }
     return hex(h);
 }
 

@@ -6,6 +6,7 @@
 #include "renderer/passes/bilateral_blur_pass.h"
 #include "renderer/passes/composite_pass.h"
 #include "renderer/passes/deep_gbuffer_pass.h"
+#include "renderer/passes/environment_pass.h"
 #include "renderer/passes/input_radiance_pass.h"
 #include "renderer/passes/pass_graph.h"
 #include "renderer/passes/radiosity_gather_pass.h"
@@ -14,6 +15,7 @@
 #include "renderer/passes/shadow_map_pass.h"
 #include "renderer/probes/probe_volume.h"
 #include "renderer/passes/temporal_blend_pass.h"
+#include "renderer/scene/environment_map.h"
 #include "renderer/scene/lighting.h"
 #include "renderer/scene/scene_gpu.h"
 
@@ -62,6 +64,7 @@ std::vector<std::unique_ptr<RenderPass>> Renderer::standardPasses() {
     std::vector<std::unique_ptr<RenderPass>> p;
     p.push_back(std::make_unique<ShadowMapPass>());
     p.push_back(std::make_unique<ProbeUpdatePass>());
+    p.push_back(std::make_unique<EnvironmentPass>());
     p.push_back(std::make_unique<DeepGBufferPass>());
     p.push_back(std::make_unique<ReprojectRadiancePass>());
     p.push_back(std::make_unique<InputRadiancePass>());
@@ -165,12 +168,18 @@ PipelineConfig Renderer::makeConfig(const Settings& s) const {
         c.radiosityDownsample = half ? 2 : 1;
     }
     if (probes_) {
-        c.probes = true;
+        c.probes = s.probesEnabled && s.indirect;  // the indirect fallback; the volume may exist for the sky alone
+        c.sky = environmentOn(*scene_, s);
         for (const auto& t : probes_->textures()) {
             int* size = t.name == "Probe Irradiance" ? c.probeIrradianceSize : t.name == "Probe Depth" ? c.probeDepthSize : c.probeDataSize;
             size[0] = t.width;
             size[1] = t.height;
         }
+    }
+    if (scene_->environment && s.environmentIntensity > 0.0f) {
+        c.environmentMap = true;
+        c.environmentMapSize[0] = scene_->environment->width;
+        c.environmentMapSize[1] = scene_->environment->height;
     }
     for (const auto& l : effectiveLights(*scene_, s)) {
         if (l.type == LightType::Point) ++c.shadowCubeLayers;
@@ -281,8 +290,10 @@ void Renderer::prepare(const Settings& user) { prepareResolved(resolveLengths(us
 
 void Renderer::prepareResolved(const Settings& s) {
     if (width_ <= 0 || height_ <= 0) return;
-    // The probe volume exists only where it can help: indirect light on, a scene with surfaces.
-    const bool wantProbes = s.probesEnabled && s.indirect && scene_->bounds.valid() && scene_->bounds.radius() > 0.0f;
+    // The probe volume exists only where it can help: indirect light on, or an environment that lights (its sky
+    // visibility lives in the probes), and a scene with surfaces.
+    const bool wantProbes = ((s.probesEnabled && s.indirect) || environmentOn(*scene_, s)) && scene_->bounds.valid() &&
+                            scene_->bounds.radius() > 0.0f;
     if (!wantProbes) probes_.reset();
     else if (!probes_ || ProbeVolume::layoutChanged(probeSettings_, s)) {
         probes_.reset();
@@ -477,9 +488,11 @@ FrameContext Renderer::makeContext(const Settings& s) {
     setupLights(s);
     uploadFrameUniforms(s);
     sceneGpu_->beginFrame(historyValid_ && s.objectMotion);  // without: last frame's matrices = this frame's
-    return FrameContext{s, config_, textures_, *shaders_, fbos_, *sceneGpu_, fullscreenVao_.id(), lightSsbo_.id(),
-                        lightCount_, casters_, shadowKey_, width_, height_, historyValid_,
-                        s.varyTaps ? float(frameIndex_ % 1024) * 0.618034f : 0.0f, probes_.get(), probeUbo_.id()};
+    FrameContext ctx{s, config_, textures_, *shaders_, fbos_, *sceneGpu_, fullscreenVao_.id(), lightSsbo_.id(),
+                     lightCount_, casters_, shadowKey_, width_, height_, historyValid_,
+                     s.varyTaps ? float(frameIndex_ % 1024) * 0.618034f : 0.0f, probes_.get(), probeUbo_.id()};
+    ctx.environment = scene_->environment.get();
+    return ctx;
 }
 
 void Renderer::executePass(const std::string& passName, const Settings& user) {

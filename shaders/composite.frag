@@ -2,6 +2,7 @@
 // Final image. physical: L = Le + albedo/pi * (E_direct + E_indirect), indirect counted once.
 // seed: L = E_input1 + E_output * albedo (the seed's formula, kept to measure its error).
 #include "common.glsl"
+#include "environment.glsl"
 uniform sampler2DArray uDepth;
 uniform sampler2DArray uAlbedo;
 uniform sampler2DArray uNormal;
@@ -67,7 +68,7 @@ void main() {
     float d = texelFetch(uDepth, ivec3(pix, 0), 0).r;
     vec3 L;
     if (isSky(d)) {
-        L = uBackground.rgb;
+        L = uBackground.rgb + environmentBackdrop(gl_FragCoord.xy);  // the environment is seen, and lights (input radiance)
     } else {
         vec3 albedo = texelFetch(uAlbedo, ivec3(pix, 0), 0).rgb;
         vec3 P = worldFromDepth(vec2(pix) + 0.5, d, uInvViewProj);

@@ -1,6 +1,7 @@
 #version 450 core
 // Outgoing Lambertian radiance of one deep G-buffer layer, the light the gather collects:
-//   B = Le + albedo/pi * (E_direct + (1 - damping) * w * E_indirect_last_frame)   (last term layer 1 only)
+//   B = Le + albedo/pi * (E_direct + E_sky + (1 - damping) * w * E_indirect_last_frame)   (last term layer 1 only)
+// E_sky: the environment's light with the probes' visibility (environment.glsl), with DEEPGI_SKY.
 #include "common.glsl"
 #include "brdf.glsl"
 #include "lighting.glsl"
@@ -16,8 +17,11 @@ uniform int uHasEmission;
 uniform int uFeedback;      // add last frame's indirect light (multi-bounce)
 uniform float uDamping;
 uniform int uSourceLevel;   // this draw fills mip level uSourceLevel: each texel is its level-0 source sample's
-#ifdef DEEPGI_PROBES
+#if defined(DEEPGI_PROBES) || defined(DEEPGI_SKY)
 #include "probe_volume.glsl"
+#endif
+#ifdef DEEPGI_SKY
+#include "environment.glsl"
 #endif
 layout(location = 0) out vec3 oRadiance;
 layout(location = 1) out vec4 oDirect;  // layer 1's outgoing direct radiance (Direct Radiance), for the composite
@@ -34,6 +38,15 @@ void main() {
     vec3 E = directIrradianceAndSpecular(P, n, viewDirection(P), spec, Ls);
 #else
     vec3 E = directIrradiance(P, n);
+#endif
+#ifdef DEEPGI_SKY
+    // The sky is direct light too (shown by the composite, bounced by the gather); an occlusion texture darkens it
+    // as it does indirect light.
+    vec3 Esky = probeSkyIrradiance(P, n);
+#ifdef OCCLUSION
+    Esky *= texelFetch(uOcclusion, ivec3(pix, uLayer), 0).r;
+#endif
+    E += Esky;
 #endif
     oDirect = vec4(sanitize(albedo / PI * E + Ls), 1.0);  // radiance: below the clamp wherever the final image is
     vec3 Eind = vec3(0.0);

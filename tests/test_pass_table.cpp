@@ -345,10 +345,10 @@ TEST_F(GLTest, GraphListsThePipelineInOrder) {
     const auto g = r->graph();
     std::vector<std::string> order;
     for (const auto& n : g) order.push_back(n.name + (n.enabled ? "" : " (off)"));
-    EXPECT_EQ(order, (std::vector<std::string>{"Shadow maps", "Probe update", "Deep G-buffer", "Reproject radiance", "Input radiance",
+    EXPECT_EQ(order, (std::vector<std::string>{"Shadow maps", "Probe update", "Environment (off)", "Deep G-buffer", "Reproject radiance", "Input radiance",
                                                "Radiosity gather", "Ambient occlusion (off)", "Bilateral blur",
                                                "Temporal blend", "Composite"}));
-    const auto& gather = g[5];
+    const auto& gather = g[6];
     EXPECT_EQ(gather.reads, (std::vector<std::string>{"Depth", "Normal", "Input Radiance", "Probe Irradiance", "Probe Depth", "Probe Data"}));
     EXPECT_EQ(gather.writes, (std::vector<std::string>{"Output Radiance", "Gather Coverage"}));
     // Units are distinct within a pass and never the material textures' 0 and 1.
@@ -362,8 +362,8 @@ TEST_F(GLTest, GraphListsThePipelineInOrder) {
     applyAssignment(s, "temporal.order=temporal_first");
     r->prepare(s);
     const auto g2 = r->graph();
-    EXPECT_EQ(g2[7].name, "Temporal blend");
-    EXPECT_EQ(g2[8].name, "Bilateral blur");
+    EXPECT_EQ(g2[8].name, "Temporal blend");
+    EXPECT_EQ(g2[9].name, "Bilateral blur");
 }
 
 // `deepgi graph`: the default scene's pipeline in order with its textures, temporal_first reorders, --dot writes a

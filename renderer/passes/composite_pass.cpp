@@ -1,5 +1,7 @@
 #include "renderer/passes/composite_pass.h"
 
+#include "renderer/passes/environment_pass.h"
+
 #include <cmath>
 
 namespace deepgi {
@@ -13,6 +15,7 @@ void CompositePass::table(const PipelineConfig& c, PassTable& t) const {
     t.read("Input Radiance", "uRadiance").level(Levels::Base).optional(!c.seedComposite);  // seed formula only
     t.read("Output Radiance", "uIndirect").optional(!c.indirect);
     t.read("Direct Radiance", "uDirect");  // evaluated once, by the input radiance pass
+    readEnvironmentMap(c, t);                // the backdrop
     t.write({"Final Radiance", {"Final Radiance"}, GL_RGBA16F, GL_TEXTURE_2D, SizeRule::screen(), 1, MemoryGroup::Extra,
              Visualize::Radiance, "Linear radiance of the final image (what final.exr holds)"});
     t.write({"Final Display", {"Final Display"}, GL_RGBA8, GL_TEXTURE_2D, SizeRule::screen(), 1, MemoryGroup::Extra,
@@ -27,7 +30,10 @@ std::vector<std::string> CompositePass::materialDefines(const PipelineConfig& c)
 
 void CompositePass::execute(FrameContext& ctx) {
     const CompositeSettings& s = ctx.settings;
-    Program& prog = program_.get(ctx.shaders, {"fullscreen.vert", "", "composite.frag", "", materialDefines(ctx.config)});
+    std::vector<std::string> defines = materialDefines(ctx.config);
+    if (ctx.config.environmentMap) defines.push_back("DEEPGI_ENVIRONMENT_MAP");
+    Program& prog = program_.get(ctx.shaders, {"fullscreen.vert", "", "composite.frag", "", defines});
+    prog.environment.set(environmentUniform(ctx));
     prog.hasEmission.set(ctx.config.emission);
     prog.indirectOn.set(ctx.config.indirect);
     prog.seedMode.set(ctx.config.seedComposite);

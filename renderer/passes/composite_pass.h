@@ -19,6 +19,7 @@ private:
         gl::Uniform<bool> seedMode{*this, "uSeedMode"};
         gl::Uniform<float> exposure{*this, "uExposure"};
         gl::Uniform<int> tonemap{*this, "uTonemap"};
+        gl::Uniform<glm::vec4> environment{*this, "uEnvironment"};
     };
     gl::ProgramSlot<Program> program_;
 };

@@ -21,7 +21,8 @@ void InputRadiancePass::table(const PipelineConfig& c, PassTable& t) const {
     t.read("Occlusion", "uOcclusion").optional(!c.occlusion);  // scales the indirect feedback
     t.read("Reprojected Radiance", "uReprojected").optional(!c.indirect);  // the multi-bounce feedback
     readShadowMaps(t);
-    if (c.probes) readProbeVolume(t);  // layer 2's indirect light, and layer 1's before there is a history
+    if (c.sky) readProbeSky(t);  // the sky's light (and the probe volume)
+    else if (c.probes) readProbeVolume(t);  // layer 2's indirect light, and layer 1's before there is a history
     if (c.indirect || c.seedComposite)
         t.write({"Input Radiance", {"Input Radiance 1", "Input Radiance 2"}, GL_R11F_G11F_B10F, GL_TEXTURE_2D_ARRAY,
                  SizeRule::screen(), 6, MemoryGroup::Radiosity, Visualize::Radiance,
@@ -44,8 +45,9 @@ void InputRadiancePass::execute(FrameContext& ctx) {
     if (ctx.config.probes) defines.push_back("DEEPGI_PROBES");
     if (ctx.config.specular) defines.push_back("SPECULAR");
     if (ctx.config.occlusion) defines.push_back("OCCLUSION");
+    if (ctx.config.sky) defines.push_back("DEEPGI_SKY");
     RadianceProgram& prog = radiance_.get(ctx.shaders, {"fullscreen.vert", "", "input_radiance.frag", "", defines});
-    if (ctx.config.probes) bindProbeUniforms(ctx);
+    if (ctx.config.probes || ctx.config.sky) bindProbeUniforms(ctx);
     prog.lighting.set(ctx);
     prog.hasEmission.set(ctx.config.emission);
     prog.feedback.set(ctx.config.indirect && ctx.historyValid);

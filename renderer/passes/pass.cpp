@@ -13,8 +13,9 @@ bool PipelineConfig::operator==(const PipelineConfig& o) const {
            probes == o.probes && std::equal(probeIrradianceSize, probeIrradianceSize + 2, o.probeIrradianceSize) &&
            std::equal(probeDepthSize, probeDepthSize + 2, o.probeDepthSize) && std::equal(probeDataSize, probeDataSize + 2, o.probeDataSize) &&
            shadowMapLayers == o.shadowMapLayers && shadowCubeLayers == o.shadowCubeLayers &&
-           radiosityDownsample == o.radiosityDownsample &&
-           specular == o.specular && occlusion == o.occlusion;
+           radiosityDownsample == o.radiosityDownsample && specular == o.specular && occlusion == o.occlusion &&
+           sky == o.sky && environmentMap == o.environmentMap &&
+           std::equal(environmentMapSize, environmentMapSize + 2, o.environmentMapSize);
 }
 
 const char* accessName(Access a) {

@@ -20,6 +20,7 @@
 namespace deepgi {
 
 class ProbeVolume;
+struct EnvironmentMap;
 
 // What this frame's pipeline contains, derived from the scene and the settings (model only what is needed).
 struct PipelineConfig {
@@ -36,6 +37,12 @@ struct PipelineConfig {
     bool ao = false;           // the ambient-occlusion pass runs
     bool probes = false;       // the world-space probe fallback runs (probes.enabled, indirect on)
     int probeIrradianceSize[2] = {0, 0}, probeDepthSize[2] = {0, 0}, probeDataSize[2] = {0, 0};
+    // The environment (renderer/scene/environment_map.h): sky = it lights the scene (the probe volume carries its
+    // visibility: "Probe Sky Irradiance", same size as the probe irradiance); environmentMap = a map is shown and
+    // sampled ("Environment Map", environmentMapSize).
+    bool sky = false;
+    bool environmentMap = false;
+    int environmentMapSize[2] = {0, 0};
     int shadowMapLayers = 0;   // directional + spot lights
     int shadowCubeLayers = 0;  // point lights
     // The gather, blur and temporal filter run on a grid d times coarser (radiosity pixel p stands for the screen
@@ -142,6 +149,7 @@ struct FrameContext {
     float time;          // seconds of animation for temporally varying taps
     ProbeVolume* probes; // the world-space fallback (null when config.probes is false)
     GLuint probeUniforms;  // its uniform block (probe_volume.glsl), bound at 2
+    const EnvironmentMap* environment = nullptr;  // the scene's environment map (null = none)
     // Set by the renderer for the pass that runs.
     const RenderPass* pass = nullptr;
     const PassTable* table = nullptr;

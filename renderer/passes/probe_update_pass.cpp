@@ -10,7 +10,7 @@
 namespace deepgi {
 
 void ProbeUpdatePass::table(const PipelineConfig& c, PassTable& t) const {
-    if (!c.probes) return;
+    if (!c.probes && !c.sky) return;
     auto size = [](const int s[2]) { return SizeRule::fixed(s[0], s[1]); };
     t.write({"Probe Irradiance", {"Probe Irradiance"}, GL_RGBA32F, GL_TEXTURE_2D, size(c.probeIrradianceSize), 1,
              MemoryGroup::Extra, Visualize::Radiance,
@@ -24,6 +24,11 @@ void ProbeUpdatePass::table(const PipelineConfig& c, PassTable& t) const {
              Visualize::Radiance,
              "Per probe: xyz = offset from its grid position (moved out of geometry), w = state (1 active, 0 inside "
              "geometry, -1 unused: no surface near)"});
+    if (c.sky)
+        t.write({"Probe Sky Irradiance", {"Probe Sky Irradiance"}, GL_RGBA32F, GL_TEXTURE_2D, size(c.probeIrradianceSize), 1,
+                 MemoryGroup::Extra, Visualize::Radiance,
+                 "Irradiance from the environment of each probe over the sphere of directions (its rays that leave "
+                 "the scene; octahedral tiles as Probe Irradiance): the sky's direct light with visibility"});
 }
 
 void ProbeUpdatePass::execute(FrameContext& ctx) {
@@ -31,7 +36,15 @@ void ProbeUpdatePass::execute(FrameContext& ctx) {
     // New lights, another bounce damping (the probes' bounce is damped like the screen's), or a new volume: every
     // probe starts over; a settled volume would otherwise keep the old answer for good.
     const RadiositySettings& rs = ctx.settings;
-    const uint64_t key = fnv1a(ctx.shadowKey, &rs.damping, sizeof(rs.damping)) | 1u;
+    uint64_t key = fnv1a(ctx.shadowKey, &rs.damping, sizeof(rs.damping));
+    if (ctx.config.sky) {  // and the environment, when it lights
+        const EnvironmentSettings& es = ctx.settings;
+        const void* map = ctx.environment;
+        key = fnv1a(key, &es.skyRadiance, sizeof(es.skyRadiance));
+        key = fnv1a(key, &es.environmentIntensity, sizeof(es.environmentIntensity));
+        key = fnv1a(key, &map, sizeof(map));
+    }
+    key |= 1u;
     if (key != lightKey_) {
         if (lightKey_ != 0 && uploadedVolume_ == &v) v.resetHistory();
         lightKey_ = key;
@@ -46,6 +59,7 @@ void ProbeUpdatePass::execute(FrameContext& ctx) {
     // New textures (a resize, a pipeline change) only need the settled state uploaded again: another update would
     // make the probes, and so the image, depend on how many times the textures were reallocated.
     if (!settled) v.update(ctx.settings);
+    if (ctx.config.sky) v.uploadSkyTexture(ctx.texture("Probe Sky Irradiance"), all);
     v.uploadTextures(ctx.texture("Probe Irradiance"), ctx.texture("Probe Depth"), ctx.texture("Probe Data"), all);
     uploadedGeneration_ = ctx.textures.generation();
     uploadedVolume_ = &v;
@@ -56,6 +70,11 @@ void readProbeVolume(PassTable& t) {
     t.read("Probe Irradiance", "uProbeIrradiance");
     t.read("Probe Depth", "uProbeDepth");
     t.read("Probe Data", "uProbeData");
+}
+
+void readProbeSky(PassTable& t) {
+    readProbeVolume(t);
+    t.read("Probe Sky Irradiance", "uProbeSky");
 }
 
 void bindProbeUniforms(const FrameContext& ctx) { glBindBufferBase(GL_UNIFORM_BUFFER, 2, ctx.probeUniforms); }

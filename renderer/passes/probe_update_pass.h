@@ -11,7 +11,7 @@ class ProbeUpdatePass final : public RenderPass {
 public:
     const char* name() const override { return "Probe update"; }
     void table(const PipelineConfig& c, PassTable& t) const override;
-    bool enabled(const PipelineConfig& c) const override { return c.probes; }
+    bool enabled(const PipelineConfig& c) const override { return c.probes || c.sky; }
     void execute(FrameContext& ctx) override;
 
 private:
@@ -24,5 +24,7 @@ private:
 // uProbeData), and its uniform block (binding 2) bound for the next draw.
 void readProbeVolume(PassTable& t);
 void bindProbeUniforms(const FrameContext& ctx);
+// The probe textures and the sky atlas ("Probe Sky Irradiance", sampler uProbeSky) of shaders/environment.glsl.
+void readProbeSky(PassTable& t);
 
 }  // namespace deepgi

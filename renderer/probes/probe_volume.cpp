@@ -1,6 +1,7 @@
 #include "renderer/probes/probe_volume.h"
 
 #include "renderer/probes/octahedral.h"
+#include "renderer/scene/environment_map.h"
 #include "renderer/scene/lighting.h"
 
 #include <glm/gtc/quaternion.hpp>
@@ -294,6 +295,7 @@ void ProbeVolume::resetHistory() {
     for (size_t i = 0; i + 3 < irradiance_.size(); i += 4) irradiance_[i] = irradiance_[i + 1] = irradiance_[i + 2] = 0.0f;
     updateIndex_ = 0;
     cursor_ = 0;
+    for (size_t i = 0; i + 3 < sky_.size(); i += 4) sky_[i] = sky_[i + 1] = sky_[i + 2] = 0.0f;
 }
 
 template <int C>
@@ -379,6 +381,25 @@ ProbeUpdateStats ProbeVolume::update(const Settings& s) {
         return stats;
     }
     const std::vector<Light> lights = effectiveLights(scene_, s);
+    // The sky: allocated while the environment lights, freed when it stops.
+    if (!environmentOn(scene_, s)) sky_.clear();  // as the pipeline's config.sky (an all-black map: zeros)
+    else if (sky_.empty()) {
+        sky_.assign(irradiance_.size(), 0.0f);
+        for (size_t i = 3; i < sky_.size(); i += 4) sky_[i] = 1.0f;
+    }
+    const bool sky = hasSky();
+    // The uniform sky through the rays that miss (a ratio estimate: exact for an open hemisphere); the map by
+    // importance-sampled rays of its own (an absolute estimate: c x L / pdf), skySamples of them per probe.
+    const glm::vec3 uniformSky(std::max(0.0f, s.skyRadiance) * std::max(0.0f, s.environmentIntensity));
+    const bool skyMap = sky && scene_.environment != nullptr;
+    if (skyMap && (skyMapKey_ != scene_.environment.get() || skyMapIntensity_ != s.environmentIntensity)) {
+        Settings mapOnly = s;
+        mapOnly.skyRadiance = 0.0f;
+        skyMapSampler_ = std::make_shared<EnvironmentLight>(scene_.environment.get(), mapOnly, true);
+        skyMapKey_ = scene_.environment.get();
+        skyMapIntensity_ = s.environmentIntensity;
+    }
+    const int skySamples = skyMap && skyMapSampler_->sampled() ? std::max(16, raysPerProbe / 4) : 0;
     const glm::mat3 rotation = randomRotation(seed_, updateIndex_);
     std::vector<glm::vec3> dirs(static_cast<size_t>(raysPerProbe));
     for (int i = 0; i < raysPerProbe; ++i) dirs[i] = rotation * fibonacciDirection(i, raysPerProbe);
@@ -387,6 +408,8 @@ ProbeUpdateStats ProbeVolume::update(const Settings& s) {
     // Per batch slot, as arrays per texel: irradiance sums (r, g, b, weight), depth sums (d, d^2, weight).
     const size_t irrTexels = irrDirs_.size(), depthTexels = depthDirs_.size();
     std::vector<float> newIrr(batch.size() * irrTexels * 4, 0.0f), newDepth(batch.size() * depthTexels * 3, 0.0f);
+    std::vector<float> newSky(sky ? batch.size() * irrTexels * 4 : 0, 0.0f);  // as newIrr, the uniform sky alone
+    std::vector<float> newSkyMap(skySamples ? batch.size() * irrTexels * 4 : 0, 0.0f);  // the map: sum c L / pdf / n
     std::vector<uint8_t> inside(batch.size(), 0);
     std::atomic<uint64_t> shadowRays{0};
     parallelFor(int(batch.size()), threads_, [&](int slot) {
@@ -404,16 +427,37 @@ ProbeUpdateStats ProbeVolume::update(const Settings& s) {
             if (h.hit && !h.backFace) {
                 // The probes read last update's state only (commit comes after the join): deterministic.
                 // Multi-bounce through the probes themselves, damped as the screen's feedback is (1 = one bounce).
-                const glm::vec3 e = tracer_.directIrradiance(h, lights, shadow) + feedback * irradiance(h.position, h.normal);
+                glm::vec3 e = tracer_.directIrradiance(h, lights, shadow) + feedback * irradiance(h.position, h.normal);
+                if (sky) e += skyIrradiance(h.position, h.normal);  // the sky's direct light at the hit
                 radiance = h.emission + h.albedo * (1.0f / kPi) * e;
                 if (!finite3(radiance)) hasRadiance = false;
             }
             back += h.backFace ? 1 : 0;
+            if (sky && hasRadiance) {  // a ray that leaves the scene brings the environment's radiance
+                float* sk = &newSky[size_t(slot) * irrTexels * 4];
+                accumulateIrradiance(irrTexels, irrDirs_.x.data(), irrDirs_.y.data(), irrDirs_.z.data(), d,
+                                     h.hit ? glm::vec3(0.0f) : uniformSky, sk, sk + irrTexels,
+                                     sk + 2 * irrTexels, sk + 3 * irrTexels);
+            }
             if (hasRadiance)
                 accumulateIrradiance(irrTexels, irrDirs_.x.data(), irrDirs_.y.data(), irrDirs_.z.data(), d, radiance,
                                      irr, irr + irrTexels, irr + 2 * irrTexels, irr + 3 * irrTexels);
             accumulateDepth(depthTexels, depthDirs_.x.data(), depthDirs_.y.data(), depthDirs_.z.data(), d, distance,
                             dep, dep + depthTexels, dep + 2 * depthTexels);
+        }
+        if (skySamples) {  // the map's share: its own rays, drawn from its density, blocked by either face
+            float* sk = &newSkyMap[size_t(slot) * irrTexels * 4];
+            const uint64_t base = splitmix64(seed_ ^ (uint64_t(probe) * 0x9E3779B97F4A7C15ull) ^ (updateIndex_ << 20));
+            for (int j = 0; j < skySamples; ++j) {
+                const uint64_t h1 = splitmix64(base + uint64_t(j));
+                const EnvironmentLight::Sample es = skyMapSampler_->sample(unitFloat(h1), unitFloat(splitmix64(h1)));
+                if (!(es.pdf > 0.0f)) continue;
+                if (tracer_.intersect(origin, es.direction, 0.0f, kInf).hit) continue;
+                const glm::vec3 L = es.radiance / (es.pdf * float(skySamples));
+                if (!finite3(L)) continue;
+                accumulateIrradiance(irrTexels, irrDirs_.x.data(), irrDirs_.y.data(), irrDirs_.z.data(), es.direction, L,
+                                     sk, sk + irrTexels, sk + 2 * irrTexels, sk + 3 * irrTexels);
+            }
         }
         inside[slot] = float(back) > insideFraction * float(dirs.size()) ? 1 : 0;
         shadowRays.fetch_add(shadow);
@@ -458,6 +502,22 @@ ProbeUpdateStats ProbeVolume::update(const Settings& s) {
                     dst[1] = alpha * dst[1] + (1.0f - alpha) * meanSq;
                 }
             }
+        if (sky) {  // the same blend as the irradiance above
+            const float* sk = &newSky[slot * irrTexels * 4];
+            const float* skm = skySamples ? &newSkyMap[slot * irrTexels * 4] : nullptr;
+            for (int j = 0; j < irrN_; ++j)
+                for (int i = 0; i < irrN_; ++i) {
+                    const size_t t = size_t(j) * irrN_ + i;
+                    const float weight = sk[3 * irrTexels + t];
+                    if (!(weight > 0.0f)) continue;
+                    float* dst = &sky_[4 * ((size_t(row) * (irrN_ + 2) + 1 + j) * irrW + size_t(tile) * (irrN_ + 2) + 1 + i)];
+                    for (int c = 0; c < 3; ++c) {
+                        const float v = kPi * sk[c * irrTexels + t] / weight + (skm ? skm[c * irrTexels + t] : 0.0f);
+                        if (std::isfinite(v)) dst[c] = alpha * dst[c] + (1.0f - alpha) * v;
+                    }
+                }
+            writeBorders(sky_, irrN_, 4, probe);
+        }
         writeBorders(irradiance_, irrN_, 4, probe);
         writeBorders(depth_, depthN_, 2, probe);
         ++updates_[probe];
@@ -476,6 +536,61 @@ ProbeUpdateStats ProbeVolume::update(const Settings& s) {
     stats.milliseconds = msSince(start);
     stats.cpuMilliseconds = processCpuMs() - cpuStart;
     return stats;
+}
+
+glm::vec3 ProbeVolume::skyIrradiance(const glm::vec3& x, const glm::vec3& n, float* weightSum) const {
+    if (sky_.empty()) {
+        if (weightSum) *weightSum = 0.0f;
+        return glm::vec3(0.0f);
+    }
+    return weightedAtlasIrradiance(sky_, x, n, weightSum);
+}
+
+// irradiance()'s weights (trilinear, back-face, Chebyshev visibility, crush) over another atlas of its layout;
+// shaders/environment.glsl's probeSkyIrradiance() is the GLSL side.
+glm::vec3 ProbeVolume::weightedAtlasIrradiance(const std::vector<float>& atlas, const glm::vec3& x, const glm::vec3& n,
+                                               float* weightSum) const {
+    if (weightSum) *weightSum = 0.0f;
+    if (!finite3(x) || !finite3(n) || !(glm::dot(n, n) > 1e-12f)) return glm::vec3(0.0f);
+    const glm::vec3 biased = x + n * normalBias_;
+    const glm::ivec3 last = grid_.counts - 1;
+    const glm::vec3 g = glm::clamp((biased - grid_.lo) / grid_.spacing - 0.5f, glm::vec3(-1.0f), glm::vec3(last));
+    const glm::ivec3 base = glm::clamp(glm::ivec3(glm::floor(g)), glm::ivec3(0), last - 1);
+    const glm::vec3 alpha = glm::clamp(g - glm::vec3(base), 0.0f, 1.0f);
+    const glm::vec2 octN = octahedral::encode(n);
+    glm::vec3 sum(0.0f);
+    float total = 0.0f;
+    for (int i = 0; i < 8; ++i) {
+        const glm::ivec3 o(i & 1, (i >> 1) & 1, (i >> 2) & 1);
+        const int probe = grid_.index(base + o);
+        if (state_[probe] != ProbeState::Active) continue;
+        const glm::vec3 probePos = grid_.gridPosition(base + o) + offset_[probe];
+        const glm::vec3 tri3 = glm::mix(1.0f - alpha, alpha, glm::vec3(o));
+        const float trilinear = std::max(0.001f, tri3.x * tri3.y * tri3.z);
+        const glm::vec3 toProbe = probePos - x;
+        const float toProbeLen = glm::length(toProbe);
+        const float wrap = toProbeLen > 0.0f ? (glm::dot(toProbe / toProbeLen, n) + 1.0f) * 0.5f : 1.0f;
+        float weight = wrap * wrap + 0.2f;
+        const glm::vec3 probeToPoint = biased - probePos;
+        const float dist = glm::length(probeToPoint);
+        if (dist > 0.0f) {
+            const glm::vec2 m = sampleAtlas<2>(depth_, depthN_, probe, octahedral::encode(probeToPoint / dist));
+            if (dist > m.x) {
+                const float variance = std::abs(m.y - m.x * m.x);
+                const float d = dist - m.x;
+                const float chebyshev = variance / (variance + d * d);
+                weight *= std::max(chebyshev * chebyshev * chebyshev, 0.05f);
+            }
+        }
+        weight = std::max(weight, 1e-6f);
+        constexpr float kCrush = 0.2f;
+        if (weight < kCrush) weight *= weight * weight / (kCrush * kCrush);
+        weight *= trilinear;
+        sum += weight * glm::vec3(sampleAtlas<4>(atlas, irrN_, probe, octN));
+        total += weight;
+    }
+    if (weightSum) *weightSum = total;
+    return total > 0.0f ? sum / total : glm::vec3(0.0f);
 }
 
 // The octahedral border: each edge folds onto itself mirrored, each corner is the opposite interior corner, so

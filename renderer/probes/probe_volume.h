@@ -28,6 +28,7 @@
 // count for depth and as votes that the probe is inside geometry, not for irradiance).
 #include "renderer/core/settings.h"
 #include "renderer/probes/probe_tracer.h"
+#include "renderer/scene/environment_map.h"
 #include "renderer/scene/scene.h"
 
 #include <glad/gl.h>
@@ -120,6 +121,22 @@ public:
     // weightSum (optional) receives the total weight of the probes used (0 = no probe could answer).
     glm::vec3 irradiance(const glm::vec3& x, const glm::vec3& n, float* weightSum = nullptr) const;
 
+    // ---- The sky (renderer/scene/environment_map.h) ----------------------------------------------------------
+    // With an environment that lights (environmentOn), each probe also keeps the irradiance the environment brings
+    // it (the uniform sky through its rays that leave the scene; the map through rays_per_probe / 4, at least 16,
+    // rays of its own drawn from the map's importance sampling): "Probe Sky Irradiance", laid out as "Probe Irradiance" (RGBA32F, a = 1),
+    // updated by the same rays with the same hysteresis, sampled with the same weights and Chebyshev visibility
+    // (skyIrradiance(), shaders/environment.glsl): direct sky light with visibility, never through closed walls.
+    // It is kept apart from the probe irradiance because it lights every pixel, where the probe irradiance only
+    // fills what the screen's gather misses. The probes' own bounce includes sky-lit surfaces (undamped: sky light
+    // at a hit is direct light there). Without an environment nothing of it is allocated or computed.
+    bool hasSky() const { return !sky_.empty(); }
+    glm::vec3 skyIrradiance(const glm::vec3& x, const glm::vec3& n, float* weightSum = nullptr) const;
+    ProbeTextureDesc skyTexture() const;  // valid while hasSky()
+    // Uploads the tile rows the last updates changed (everything with all); call before uploadTextures().
+    void uploadSkyTexture(GLuint skyTex, bool all = false) const;
+    const std::vector<float>& skyAtlas() const { return sky_; }  // RGBA, as irradianceAtlas()
+
     const ProbeGrid& grid() const { return grid_; }
     int probeCount() const { return grid_.count(); }
     int activeProbeCount() const { return activeCount_; }
@@ -154,6 +171,9 @@ public:
 
 private:
     void place(const Settings& settings);
+    // The irradiance of the given atlas (laid out as the irradiance atlas) at x, n with irradiance()'s weights.
+    glm::vec3 weightedAtlasIrradiance(const std::vector<float>& atlas, const glm::vec3& x, const glm::vec3& n,
+                                      float* weightSum) const;
     void writeBorders(std::vector<float>& atlas, int n, int channels, int probe);
     void writeProbeData(int probe);
     // Bilinear sample (as GL_LINEAR) of probe's tile at octahedral coordinate oct in [-1,1]^2.
@@ -175,6 +195,12 @@ private:
     size_t cursor_ = 0;  // round-robin position over the grid
     uint64_t updateIndex_ = 0;
     std::vector<float> irradiance_, depth_, data_;
+    std::vector<float> sky_;  // the sky irradiance atlas (RGBA), empty without an environment
+    // The map's share of the sky, importance-sampled (a small sun is caught by few of the probe rays): built when
+    // the map or environment.intensity changes.
+    std::shared_ptr<const EnvironmentLight> skyMapSampler_;
+    const void* skyMapKey_ = nullptr;
+    float skyMapIntensity_ = -1.0f;
     struct TexelDirections {  // interior texel directions, row-major per tile, as arrays for SIMD loops
         std::vector<float> x, y, z;  // padded with zero vectors to a multiple of 8
         size_t count = 0;            // real texels

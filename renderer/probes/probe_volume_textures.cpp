@@ -21,6 +21,30 @@ std::vector<ProbeTextureDesc> ProbeVolume::textures() const {
     };
 }
 
+ProbeTextureDesc ProbeVolume::skyTexture() const {
+    return {"Probe Sky Irradiance", GL_RGBA32F, GL_RGBA, tilesPerRow_ * (irrN_ + 2), tileRows_ * (irrN_ + 2), 4,
+            sky_.data(),
+            "Irradiance (W/m^2) from the environment per octahedral direction of each probe: its rays that leave the "
+            "scene, laid out as Probe Irradiance"};
+}
+
+void ProbeVolume::uploadSkyTexture(GLuint skyTex, bool all) const {
+    if (!skyTex || sky_.empty()) return;
+    const int lo = all || !uploadedOnce_ ? 0 : dirtyRowLo_, hi = all || !uploadedOnce_ ? tileRows_ : dirtyRowHi_;
+    if (lo >= hi) return;
+    const ProbeTextureDesc d = skyTexture();
+    const int texelsPerTileRow = d.height / tileRows_;
+    GLint alignment = 4, rowLength = 0;
+    glGetIntegerv(GL_UNPACK_ALIGNMENT, &alignment);
+    glGetIntegerv(GL_UNPACK_ROW_LENGTH, &rowLength);
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+    glPixelStorei(GL_UNPACK_ROW_LENGTH, 0);
+    glTextureSubImage2D(skyTex, 0, 0, lo * texelsPerTileRow, d.width, (hi - lo) * texelsPerTileRow, GL_RGBA, GL_FLOAT,
+                        d.data + size_t(lo) * texelsPerTileRow * d.width * 4);
+    glPixelStorei(GL_UNPACK_ALIGNMENT, alignment);
+    glPixelStorei(GL_UNPACK_ROW_LENGTH, rowLength);
+}
+
 ProbeVolumeUniforms ProbeVolume::uniforms() const {
     ProbeVolumeUniforms u{};
     for (int a = 0; a < 3; ++a) {

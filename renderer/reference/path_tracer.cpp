@@ -4,6 +4,7 @@
 #include "renderer/scene/scene_validation.h"
 
 #include "renderer/scene/brdf.h"
+#include "renderer/scene/environment_map.h"
 #include "renderer/scene/lighting.h"
 
 #include <embree3/rtcore.h>
@@ -143,27 +144,52 @@ glm::vec3 cosineHemisphere(const glm::vec3& n, float u1, float u2) {
 float maxComponent(const glm::vec3& v) { return std::max({v.x, v.y, v.z}); }
 float luminance(const glm::vec3& c) { return 0.2126f * c.x + 0.7152f * c.y + 0.0722f * c.z; }
 
+// Probability of choosing the GGX lobe at a bounce: the Fresnel-weighted split between the two lobes.
+float specularLobeProbability(const Surface& s, float nv) {
+    const float specW = luminance(brdf::fresnel(s.brdf.f0, nv)), diffW = luminance(s.albedo);
+    return diffW <= 0.0f ? 1.0f : std::clamp(specW / (specW + diffW), 0.1f, 0.9f);
+}
+
+// Density (solid angle) with which sampleBounce picks wi from wo: both lobes together. 0 below the horizon.
+float bounceDensity(const Surface& s, const glm::vec3& wo, const glm::vec3& wi) {
+    const glm::vec3& n = s.normal;
+    const float nl = glm::dot(n, wi);
+    if (!(nl > 0.0f)) return 0.0f;
+    if (!s.brdf.specular) return nl * kInvPi;
+    const float nv = glm::dot(n, wo);
+    if (!(nv > 0.0f)) return 0.0f;
+    const float pSpec = specularLobeProbability(s, nv);
+    const glm::vec3 h = glm::normalize(wo + wi);
+    return (1.0f - pSpec) * nl * kInvPi + pSpec * brdf::reflectionPdf(nv, std::max(glm::dot(n, h), 0.0f), s.brdf.alpha);
+}
+
+// The BRDF f(wo, wi): Lambertian albedo/pi, plus GGX where the material has a specular lobe.
+glm::vec3 brdfValue(const Surface& s, const glm::vec3& wo, const glm::vec3& wi) {
+    glm::vec3 f = s.albedo * kInvPi;
+    if (s.brdf.specular) f += brdf::specular(s.normal, wo, wi, s.brdf.f0, s.brdf.alpha);
+    return f;
+}
+
 // One bounce off a surface with the diffuse + GGX BRDF: the lobe is chosen at random (specular with probability
 // from the Fresnel-weighted split), the direction sampled from it (cosine, or GGX visible normals), and the weight
 // f cos / pdf uses the density of both lobes together (one-sample MIS), so either choice is unbiased.
-// Returns false where the path ends (below the horizon); wi and weight otherwise.
-bool sampleBounce(const Surface& s, const glm::vec3& wo, float u0, float u1, float u2, glm::vec3& wi, glm::vec3& weight) {
+// Returns false where the path ends (below the horizon); wi, weight and the density pdf otherwise.
+bool sampleBounce(const Surface& s, const glm::vec3& wo, float u0, float u1, float u2, glm::vec3& wi, glm::vec3& weight,
+                  float& pdf) {
     const glm::vec3& n = s.normal;
     if (!s.brdf.specular) {
         wi = cosineHemisphere(n, u1, u2);
         weight = s.albedo;  // f * cos / pdf = (albedo/pi) * cos / (cos/pi)
+        pdf = std::max(glm::dot(n, wi), 0.0f) * kInvPi;
         return true;
     }
     const float nv = glm::dot(n, wo);
     if (!(nv > 0.0f)) return false;
-    const float specW = luminance(brdf::fresnel(s.brdf.f0, nv)), diffW = luminance(s.albedo);
-    const float pSpec = diffW <= 0.0f ? 1.0f : std::clamp(specW / (specW + diffW), 0.1f, 0.9f);
-    const float alpha = s.brdf.alpha;
-    if (u0 < pSpec) {
+    if (u0 < specularLobeProbability(s, nv)) {
         glm::vec3 t, bt;
         basisAbout(n, t, bt);
         const glm::vec3 vLocal(glm::dot(wo, t), glm::dot(wo, bt), nv);
-        const glm::vec3 hl = brdf::sampleVisibleNormal(vLocal, alpha, u1, u2);
+        const glm::vec3 hl = brdf::sampleVisibleNormal(vLocal, s.brdf.alpha, u1, u2);
         const glm::vec3 h = glm::normalize(t * hl.x + bt * hl.y + n * hl.z);
         wi = glm::reflect(-wo, h);
     } else {
@@ -171,12 +197,16 @@ bool sampleBounce(const Surface& s, const glm::vec3& wo, float u0, float u1, flo
     }
     const float nl = glm::dot(n, wi);
     if (!(nl > 0.0f)) return false;
-    const glm::vec3 h = glm::normalize(wo + wi);
-    const float pdf = (1.0f - pSpec) * nl * kInvPi + pSpec * brdf::reflectionPdf(nv, std::max(glm::dot(n, h), 0.0f), alpha);
+    pdf = bounceDensity(s, wo, wi);
     if (!(pdf > 0.0f) || !std::isfinite(pdf)) return false;
-    const glm::vec3 f = s.albedo * kInvPi + brdf::specular(n, wo, wi, s.brdf.f0, alpha);
-    weight = f * (nl / pdf);
+    weight = brdfValue(s, wo, wi) * (nl / pdf);
     return std::isfinite(weight.x) && std::isfinite(weight.y) && std::isfinite(weight.z);
+}
+
+// Power heuristic (beta = 2) weight of a strategy of density pa against one of density pb.
+float powerHeuristic(float pa, float pb) {
+    const float a = pa * pa, b = pb * pb;
+    return a + b > 0.0f ? a / (a + b) : 0.0f;
 }
 
 std::string formatDuration(double s) {
@@ -345,16 +375,51 @@ struct ReferenceTracer::Impl {
     // One path through the scene. Adds to direct (what the camera sees directly plus direct light at the first
     // hit) and indirect (everything after the first bounce).
     // The camera ray runs from the near to the far clip plane (clipNear/clipFar along it), as the rasterizer clips.
+    // Next-event estimation of the environment map at s: one direction drawn from the map's density, weighted by
+    // the power heuristic against the BRDF sampling of the bounce that follows (weight 1 when none follows: the
+    // last bounce). Returns the outgoing radiance towards wo (f x L x cos / pdf x weight), darkened by the
+    // occlusion texture as the renderer darkens its sky term.
+    glm::vec3 environmentNee(const Surface& s, const glm::vec3& wo, const EnvironmentLight& env, Pcg32& rng,
+                             bool bounceFollows, uint64_t& rays) const {
+        if (!env.sampled()) return glm::vec3(0.0f);
+        const float u1 = rng.uniform(), u2 = rng.uniform();
+        const EnvironmentLight::Sample es = env.sample(u1, u2);
+        const float cosTheta = glm::dot(s.normal, es.direction);
+        // The same directions the bounce may take: above both the shading and the geometric surface.
+        if (!(es.pdf > 0.0f) || !(cosTheta > 0.0f) || !(glm::dot(es.direction, s.geomNormal) > 0.0f)) return glm::vec3(0.0f);
+        if (!(maxComponent(es.radiance) > 0.0f)) return glm::vec3(0.0f);
+        ++rays;
+        if (occluded(offsetOrigin(s.position, s.geomNormal), es.direction, kInf)) return glm::vec3(0.0f);
+        const float bsdfPdf = bounceDensity(s, wo, es.direction);
+        const float w = bounceFollows ? powerHeuristic(es.pdf, bsdfPdf) : 1.0f;
+        return brdfValue(s, wo, es.direction) * es.radiance * (s.occlusion * cosTheta * w / es.pdf);
+    }
+
     void tracePath(glm::vec3 origin, glm::vec3 dir, float clipNear, float clipFar, Pcg32& rng,
-                   const std::vector<Light>& lights, float background, int maxBounces, bool diffuseOnly,
+                   const std::vector<Light>& lights, float background, const EnvironmentLight& env, int maxBounces,
+                   bool diffuseOnly,
                    glm::vec3& direct, glm::vec3& indirect, uint64_t& rays) const {
         glm::vec3 throughput(1.0f);
+        float bouncePdf = 0.0f;  // density (solid angle) of the BRDF sampling that chose dir, after depth 0
         for (int depth = 0;; ++depth) {
             RTCRayHit rh;
             ++rays;
             const bool hit = depth == 0 ? intersect(origin, dir, rh, clipNear, clipFar) : intersect(origin, dir, rh);
             if (!hit) {
-                if (depth == 0) direct += glm::vec3(background);
+                // Escaped: the environment (and for camera rays the backdrop). A bounce ray's share is weighted
+                // against the map's next-event estimation at the vertex it left. Light arriving at the first hit
+                // straight from the sky is direct light there.
+                if (depth == 0) direct += glm::vec3(background) + env.radiance(dir);
+                else if (env.enabled()) {
+                    // Both faces of every surface block the sky, as they block shadow rays and the probes' rays
+                    // (bounce rays pass through single-sided back faces): the map's next-event estimation and
+                    // this share then see the same visibility.
+                    ++rays;
+                    if (!occluded(origin, dir, kInf)) {
+                        const float w = env.sampled() ? powerHeuristic(bouncePdf, env.pdf(dir)) : 1.0f;
+                        (depth == 1 ? direct : indirect) += throughput * env.radiance(dir) * w;
+                    }
+                }
                 return;
             }
             const Surface s = shade(rh, dir, diffuseOnly);
@@ -362,15 +427,18 @@ struct ReferenceTracer::Impl {
             glm::vec3 specular(0.0f);
             const glm::vec3 e = directIrradiance(s, lights, rays, -dir, s.brdf.specular ? &specular : nullptr);
             acc += throughput * (s.emission + s.albedo * kInvPi * e + specular);
+            if (env.sampled()) acc += throughput * environmentNee(s, -dir, env, rng, depth < maxBounces, rays);
             if (depth >= maxBounces) return;
 
             // The lobe choice takes a third number only for specular materials (Lambertian paths stay as they were).
             const float u0 = s.brdf.specular ? rng.uniform() : 0.0f;
             const float u1 = rng.uniform(), u2 = rng.uniform();
             glm::vec3 wi, weight;
-            if (!sampleBounce(s, -dir, u0, u1, u2, wi, weight)) return;
+            float pdf = 0.0f;
+            if (!sampleBounce(s, -dir, u0, u1, u2, wi, weight, pdf)) return;
             // Directions below the geometric surface (possible with interpolated normals) end the path.
             if (!(glm::dot(wi, s.geomNormal) > 0.0f)) return;
+            bouncePdf = pdf;
             throughput *= weight * s.occlusion;  // the occlusion texture darkens the indirect light arriving here
             if (depth + 1 > kRouletteAfter) {
                 const float survive = std::min(0.95f, maxComponent(weight));
@@ -451,6 +519,7 @@ ReferenceResult ReferenceTracer::render(const Camera& camera, const Settings& se
     const glm::vec3 forward = camera.forward();
     const std::vector<Light> lights = effectiveLights(impl_->scene, settings);
     const float background = settings.background;
+    const EnvironmentLight env(impl_->scene.environment.get(), settings, true);
     const int W = opt.width, H = opt.height;
     const int tilesX = (W + kTile - 1) / kTile, tilesY = (H + kTile - 1) / kTile, nTiles = tilesX * tilesY;
     int nThreads = opt.threads > 0 ? opt.threads : int(std::thread::hardware_concurrency());
@@ -488,7 +557,7 @@ ReferenceResult ReferenceTracer::render(const Camera& camera, const Settings& se
                             glm::vec3 direct(0.0f), indirect(0.0f);
                             const float along = std::max(glm::dot(d, forward), 1e-6f);  // 1 for orthographic
                             impl_->tracePath(o, d, camera.znear / along, camera.zfar / along, rng, lights, background,
-                                             opt.maxBounces, settings.diffuseOnly, direct, indirect, rays);
+                                             env, opt.maxBounces, settings.diffuseOnly, direct, indirect, rays);
                             const glm::dvec3 f = glm::dvec3(direct) + glm::dvec3(indirect);
                             sumD += glm::dvec3(direct);
                             sumI += glm::dvec3(indirect);

@@ -7,7 +7,11 @@
 //   - Single-sided surfaces are invisible from behind to camera and bounce rays (the rasterizer culls back
 //     faces) but block shadow rays from both sides (the shadow maps are rendered without culling).
 //   - Next-event estimation towards every light of effectiveLights(); cosine-weighted bounces; Russian roulette
-//     after the third bounce. Camera rays that miss see light.background; bounce rays that miss get nothing.
+//     after the third bounce. Camera rays that miss see light.background + the environment; bounce rays that miss
+//     get the environment (renderer/scene/environment_map.h) unless a back face was in the way (both faces
+//     block the sky, as they block shadow rays and the probes' rays), whose map is importance-sampled (luminance x
+//     sin(theta)) for next-event estimation at every hit, combined with the cosine sampling of the bounces by the
+//     power heuristic; a uniform sky alone is left to the cosine sampling.
 #include "renderer/core/camera.h"
 #include "renderer/core/image_io.h"
 #include "renderer/core/settings.h"
@@ -32,7 +36,7 @@ struct ReferenceOptions {
 
 struct ReferenceResult {
     // RGB linear radiance. final = direct + indirect (accumulated separately, not subtracted).
-    // direct = emission seen by the camera + direct light at the first hit + background.
+    // direct = emission seen by the camera + direct light at the first hit (lights and environment) + backdrop.
     FloatImage final, direct, indirect;
     FloatImage stdError;          // per pixel and channel: standard error of the mean of `final`
     double seconds = 0.0;         // wall time of the render (without the BVH build)

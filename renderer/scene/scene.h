@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -153,6 +154,8 @@ struct Animation {
     std::vector<AnimationChannel> channels;
 };
 
+struct EnvironmentMap;  // renderer/scene/environment_map.h
+
 struct Scene {
     std::string sourcePath;  // file it came from ("" for scenes built in code)
     std::vector<MeshPart> parts;
@@ -166,6 +169,9 @@ struct Scene {
     std::vector<int> roots;        // nodes without a parent, in file order
     std::vector<Animation> animations;
     Aabb bounds;                   // of the vertices as loaded (rest pose): the scene's size for lengths
+    // The equirectangular environment map (--environment FILE), null = none: what rays leaving the scene see
+    // and are lit by, with environment.* (renderer/scene/environment_map.h).
+    std::shared_ptr<const EnvironmentMap> environment;
     uint64_t loadPeakBytes = 0;  // most memory the loader held at once (its own count, see GltfLoadOptions)
 
     size_t triangleCount() const {
