@@ -24,6 +24,11 @@ void ProbeUpdatePass::table(const PipelineConfig& c, PassTable& t) const {
              Visualize::Radiance,
              "Per probe: xyz = offset from its grid position (moved out of geometry), w = state (1 active, 0 inside "
              "geometry, -1 unused: no surface near)"});
+    const int shSize[2] = {c.probeDataSize[0] * 9, c.probeDataSize[1]};  // 9 texels per probe
+    t.write({"Probe Radiance SH", {"Probe Radiance SH"}, GL_RGBA32F, GL_TEXTURE_2D, size(shSize), 1, MemoryGroup::Extra,
+             Visualize::Radiance,
+             "Radiance arriving at each probe per direction, order-2 spherical harmonics (9 texels per probe): the "
+             "gather fills only the directions the screen did not cover"});
 }
 
 void ProbeUpdatePass::execute(FrameContext& ctx) {
@@ -46,7 +51,8 @@ void ProbeUpdatePass::execute(FrameContext& ctx) {
     // New textures (a resize, a pipeline change) only need the settled state uploaded again: another update would
     // make the probes, and so the image, depend on how many times the textures were reallocated.
     if (!settled) v.update(ctx.settings);
-    v.uploadTextures(ctx.texture("Probe Irradiance"), ctx.texture("Probe Depth"), ctx.texture("Probe Data"), all);
+    v.uploadTextures(ctx.texture("Probe Irradiance"), ctx.texture("Probe Depth"), ctx.texture("Probe Data"),
+                     ctx.texture("Probe Radiance SH"), all);
     uploadedGeneration_ = ctx.textures.generation();
     uploadedVolume_ = &v;
     v.uploadUniforms(ctx.probeUniforms);
@@ -57,6 +63,8 @@ void readProbeVolume(PassTable& t) {
     t.read("Probe Depth", "uProbeDepth");
     t.read("Probe Data", "uProbeData");
 }
+
+void readProbeRadiance(PassTable& t) { t.read("Probe Radiance SH", "uProbeRadianceSH"); }
 
 void bindProbeUniforms(const FrameContext& ctx) { glBindBufferBase(GL_UNIFORM_BUFFER, 2, ctx.probeUniforms); }
 
