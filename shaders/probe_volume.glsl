@@ -20,6 +20,9 @@
 //                               GL_LINEAR, clamp to edge
 //   sampler2D uProbeData        unit PROBE_DATA_UNIT (default 5): "Probe Data", RGBA32F, one texel per probe,
 //                               read with texelFetch (xyz offset, w state: > 0.5 = active)
+//   sampler2D uProbeRadianceSH  unit PROBE_RADIANCE_SH_UNIT (default 6): "Probe Radiance SH", RGBA32F, 9 texels per
+//                               probe (order-2 harmonics of the arriving radiance), read with texelFetch; only
+//                               probeIrradianceAndRadianceSH() reads it
 #ifndef PROBE_VOLUME_UBO_BINDING
 #define PROBE_VOLUME_UBO_BINDING 2
 #endif
@@ -32,6 +35,9 @@
 #ifndef PROBE_DATA_UNIT
 #define PROBE_DATA_UNIT 5
 #endif
+#ifndef PROBE_RADIANCE_SH_UNIT
+#define PROBE_RADIANCE_SH_UNIT 6
+#endif
 
 layout(std140, binding = PROBE_VOLUME_UBO_BINDING) uniform ProbeVolumeUniforms {
     vec4 uProbeLo;
@@ -43,10 +49,12 @@ layout(std140, binding = PROBE_VOLUME_UBO_BINDING) uniform ProbeVolumeUniforms {
 layout(binding = PROBE_IRRADIANCE_UNIT) uniform sampler2D uProbeIrradiance;
 layout(binding = PROBE_DEPTH_UNIT) uniform sampler2D uProbeDepth;
 layout(binding = PROBE_DATA_UNIT) uniform sampler2D uProbeData;
+layout(binding = PROBE_RADIANCE_SH_UNIT) uniform sampler2D uProbeRadianceSH;
 #else
 uniform sampler2D uProbeIrradiance;
 uniform sampler2D uProbeDepth;
 uniform sampler2D uProbeData;
+uniform sampler2D uProbeRadianceSH;
 #endif
 
 float probeSignNotZero(float v) { return v >= 0.0 ? 1.0 : -1.0; }
@@ -65,47 +73,66 @@ vec2 probeAtlasUv(int probe, int n, vec3 d, vec2 atlasSize) {
     return (origin + (probeOctEncode(d) * 0.5 + 0.5) * float(n)) / atlasSize;
 }
 
-vec4 probeIrradianceWeighted(vec3 X, vec3 n) {
-    if (any(isnan(X)) || any(isinf(X)) || any(isnan(n)) || any(isinf(n)) || !(dot(n, n) > 1e-12)) return vec4(0.0);
-    vec3 spacing = uProbeSpacing.xyz;
+// The cell of probes around X (surface normal n): its first corner, the trilinear fractions, the biased receiver.
+bool probeCell(vec3 X, vec3 n, out ivec3 base, out vec3 alpha, out vec3 biased) {
+    base = ivec3(0);
+    alpha = vec3(0.0);
+    biased = X;
+    if (any(isnan(X)) || any(isinf(X)) || any(isnan(n)) || any(isinf(n)) || !(dot(n, n) > 1e-12)) return false;
     ivec3 last = uProbeCounts.xyz - 1;
-    vec3 biased = X + n * uProbeLo.w;
-    vec3 g = clamp((biased - uProbeLo.xyz) / spacing - 0.5, vec3(-1.0), vec3(last));
-    ivec3 base = clamp(ivec3(floor(g)), ivec3(0), last - 1);
-    vec3 alpha = clamp(g - vec3(base), 0.0, 1.0);
+    biased = X + n * uProbeLo.w;
+    vec3 g = clamp((biased - uProbeLo.xyz) / uProbeSpacing.xyz - 0.5, vec3(-1.0), vec3(last));
+    base = clamp(ivec3(floor(g)), ivec3(0), last - 1);
+    alpha = clamp(g - vec3(base), 0.0, 1.0);
+    return true;
+}
+
+// Corner i (0..7) of that cell: the probe's index (-1 = inside geometry or unused) and its unnormalised weight.
+int probeCorner(int i, ivec3 base, vec3 alpha, vec3 X, vec3 n, vec3 biased, vec2 depthSize, out float weight) {
+    weight = 0.0;
+    ivec3 o = ivec3(i & 1, (i >> 1) & 1, (i >> 2) & 1);
+    ivec3 c = base + o;
+    int probe = c.x + uProbeCounts.x * (c.y + uProbeCounts.y * c.z);
+    vec4 data = texelFetch(uProbeData, ivec2(probe % uProbeCounts.w, probe / uProbeCounts.w), 0);
+    if (data.w < 0.5) return -1;  // inside geometry or unused
+    vec3 probePos = uProbeLo.xyz + (vec3(c) + 0.5) * uProbeSpacing.xyz + data.xyz;
+    vec3 tri3 = mix(1.0 - alpha, alpha, vec3(o));
+    float trilinear = max(0.001, tri3.x * tri3.y * tri3.z);
+    // Smooth back-face term: probes behind the surface count less.
+    vec3 toProbe = probePos - X;
+    float toProbeLen = length(toProbe);
+    float wrap = toProbeLen > 0.0 ? (dot(toProbe / toProbeLen, n) + 1.0) * 0.5 : 1.0;
+    float w = wrap * wrap + 0.2;
+    // Chebyshev visibility against the probe's depth moments towards the (biased) receiver.
+    vec3 probeToPoint = biased - probePos;
+    float dist = length(probeToPoint);
+    if (dist > 0.0) {
+        vec2 m = texture(uProbeDepth, probeAtlasUv(probe, uProbeTexels.y, probeToPoint / dist, depthSize)).rg;
+        if (dist > m.x) {
+            float variance = abs(m.y - m.x * m.x);
+            float d = dist - m.x;
+            float chebyshev = variance / (variance + d * d);
+            w *= max(chebyshev * chebyshev * chebyshev, 0.05);
+        }
+    }
+    w = max(w, 1e-6);
+    const float crush = 0.2;  // weights below this fall off cubically (fewer leaks)
+    if (w < crush) w *= w * w / (crush * crush);
+    weight = w * trilinear;
+    return probe;
+}
+
+vec4 probeIrradianceWeighted(vec3 X, vec3 n) {
+    ivec3 base;
+    vec3 alpha, biased;
+    if (!probeCell(X, n, base, alpha, biased)) return vec4(0.0);
     vec2 irrSize = vec2(textureSize(uProbeIrradiance, 0)), depthSize = vec2(textureSize(uProbeDepth, 0));
     vec3 sum = vec3(0.0);
     float total = 0.0;
     for (int i = 0; i < 8; ++i) {
-        ivec3 o = ivec3(i & 1, (i >> 1) & 1, (i >> 2) & 1);
-        ivec3 c = base + o;
-        int probe = c.x + uProbeCounts.x * (c.y + uProbeCounts.y * c.z);
-        vec4 data = texelFetch(uProbeData, ivec2(probe % uProbeCounts.w, probe / uProbeCounts.w), 0);
-        if (data.w < 0.5) continue;  // inside geometry or unused
-        vec3 probePos = uProbeLo.xyz + (vec3(c) + 0.5) * spacing + data.xyz;
-        vec3 tri3 = mix(1.0 - alpha, alpha, vec3(o));
-        float trilinear = max(0.001, tri3.x * tri3.y * tri3.z);
-        // Smooth back-face term: probes behind the surface count less.
-        vec3 toProbe = probePos - X;
-        float toProbeLen = length(toProbe);
-        float wrap = toProbeLen > 0.0 ? (dot(toProbe / toProbeLen, n) + 1.0) * 0.5 : 1.0;
-        float weight = wrap * wrap + 0.2;
-        // Chebyshev visibility against the probe's depth moments towards the (biased) receiver.
-        vec3 probeToPoint = biased - probePos;
-        float dist = length(probeToPoint);
-        if (dist > 0.0) {
-            vec2 m = texture(uProbeDepth, probeAtlasUv(probe, uProbeTexels.y, probeToPoint / dist, depthSize)).rg;
-            if (dist > m.x) {
-                float variance = abs(m.y - m.x * m.x);
-                float d = dist - m.x;
-                float chebyshev = variance / (variance + d * d);
-                weight *= max(chebyshev * chebyshev * chebyshev, 0.05);
-            }
-        }
-        weight = max(weight, 1e-6);
-        const float crush = 0.2;  // weights below this fall off cubically (fewer leaks)
-        if (weight < crush) weight *= weight * weight / (crush * crush);
-        weight *= trilinear;
+        float weight;
+        int probe = probeCorner(i, base, alpha, X, n, biased, depthSize, weight);
+        if (probe < 0) continue;
         sum += weight * texture(uProbeIrradiance, probeAtlasUv(probe, uProbeTexels.x, n, irrSize)).rgb;
         total += weight;
     }
@@ -113,3 +140,42 @@ vec4 probeIrradianceWeighted(vec3 X, vec3 n) {
 }
 
 vec3 probeIrradiance(vec3 X, vec3 n) { return probeIrradianceWeighted(X, n).rgb; }
+
+// Order-2 real spherical harmonics at unit direction d, in the order of ProbeVolume's "Probe Radiance SH" texels
+// (Y00, Y1-1, Y10, Y11, Y2-2, Y2-1, Y20, Y21, Y22); the constants are folded into probeSHIntegrate() below.
+//
+// probeIrradianceAndRadianceSH(X, n, sh): probeIrradianceWeighted(X, n), and in sh the harmonics of the radiance
+// arriving at X, blended over the same probes with the same weights. Per direction d:
+//   L(d) = sum_k sh[k] * Y_k(d)
+// so the probes' share of a set of directions with weights w_i (cos x solid angle) is dot(sh, sum_i w_i Y_k(d_i)).
+vec4 probeIrradianceAndRadianceSH(vec3 X, vec3 n, out vec3 sh[9]) {
+    for (int k = 0; k < 9; ++k) sh[k] = vec3(0.0);
+    ivec3 base;
+    vec3 alpha, biased;
+    if (!probeCell(X, n, base, alpha, biased)) return vec4(0.0);
+    vec2 irrSize = vec2(textureSize(uProbeIrradiance, 0)), depthSize = vec2(textureSize(uProbeDepth, 0));
+    vec3 sum = vec3(0.0);
+    float total = 0.0;
+    for (int i = 0; i < 8; ++i) {
+        float weight;
+        int probe = probeCorner(i, base, alpha, X, n, biased, depthSize, weight);
+        if (probe < 0) continue;
+        sum += weight * texture(uProbeIrradiance, probeAtlasUv(probe, uProbeTexels.x, n, irrSize)).rgb;
+        ivec2 t = ivec2((probe % uProbeCounts.w) * 9, probe / uProbeCounts.w);
+        for (int k = 0; k < 9; ++k) sh[k] += weight * texelFetch(uProbeRadianceSH, t + ivec2(k, 0), 0).rgb;
+        total += weight;
+    }
+    if (!(total > 0.0)) return vec4(0.0);
+    for (int k = 0; k < 9; ++k) sh[k] /= total;
+    return vec4(sum / total, total);
+}
+
+// The 9 direction moments a set of weighted directions needs, accumulated one direction at a time:
+//   m0 += w;  m1 += w * d;  m2 += w * (d.x d.y, d.y d.z, d.x d.z);  m3 += w * (d.z^2, d.x^2 - d.y^2)
+// and the probes' radiance integrated over them: sum_i w_i L(d_i).
+vec3 probeSHIntegrate(vec3 sh[9], float m0, vec3 m1, vec3 m2, vec2 m3) {
+    const float c0 = 0.282094792, c1 = 0.488602512, c2 = 1.092548431, c3 = 0.315391565, c4 = 0.546274215;
+    return sh[0] * (c0 * m0) + sh[1] * (c1 * m1.y) + sh[2] * (c1 * m1.z) + sh[3] * (c1 * m1.x) +
+           sh[4] * (c2 * m2.x) + sh[5] * (c2 * m2.y) + sh[6] * (c3 * (3.0 * m3.x - m0)) + sh[7] * (c2 * m2.z) +
+           sh[8] * (c4 * m3.y);
+}

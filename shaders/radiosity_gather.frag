@@ -144,6 +144,13 @@ void main() {
     float zX = eyeZ(X);
     vec3 sum = vec3(0.0);
     float covered = 0.0;
+#ifdef DEEPGI_PROBE_DIRECTIONAL_FILL
+    // Direction moments of the covered taps (probe_volume.glsl, probeSHIntegrate): what the probes say those
+    // directions bring, to be taken out of the probes' irradiance.
+    float pm0 = 0.0;
+    vec3 pm1 = vec3(0.0), pm2 = vec3(0.0);
+    vec2 pm3 = vec2(0.0);
+#endif
     // Tap radii are uniform in [0, rss]: a tap at h stands for 2*pi*h*rss/N pixels^2 of the disk.
     float areaPerH = 2.0 * PI * rss / float(uNumSamples);
     for (int i = 0; i < MAX_SPIRAL_TAPS; ++i) {
@@ -201,9 +208,41 @@ void main() {
             sum += E1;
             covered += c1;
         }
+#ifdef DEEPGI_PROBE_DIRECTIONAL_FILL
+        for (int j = 0; j < 2; ++j) {
+            float w = PI * (j == 0 ? c0 : c1);  // cos_X x solid angle
+            if (!(w > 0.0)) continue;
+            vec3 dd = normalize((j == 0 ? Y0 : Y1) - X);
+            pm0 += w;
+            pm1 += w * dd;
+            pm2 += w * vec3(dd.x * dd.y, dd.y * dd.z, dd.x * dd.z);
+            pm3 += w * vec2(dd.z * dd.z, dd.x * dd.x - dd.y * dd.y);
+        }
+#endif
     }
+#ifdef DEEPGI_PROBE_DIRECTIONAL_FILL
+    // Taps whose patches sum to more than the hemisphere (their solid angles overlap: grazing patches, a corner
+    // seen by both layers) are an estimate of the hemisphere with too much weight: rescale it to one hemisphere.
+    if (covered > 1.0) {
+        float k = 1.0 / covered;
+        sum *= k;
+        pm0 *= k;
+        pm1 *= k;
+        pm2 *= k;
+        pm3 *= k;
+    }
+#endif
     covered = clamp(covered, 0.0, 1.0);
-#ifdef DEEPGI_PROBES
+#if defined(DEEPGI_PROBES) && defined(DEEPGI_PROBE_DIRECTIONAL_FILL)
+    // The directions the screen did not cover (off screen, beyond the radius, hidden) take the probes' radiance in
+    // those directions: their irradiance less their own estimate of the covered directions, so that screen and
+    // probes count the hemisphere once however its light is spread (at most the probes' irradiance, at least 0).
+    {
+        vec3 sh[9];
+        vec3 Ep = probeIrradianceAndRadianceSH(X, nX, sh).rgb;
+        sum += clamp(Ep - probeSHIntegrate(sh, pm0, pm1, pm2, pm3), vec3(0.0), Ep);
+    }
+#elif defined(DEEPGI_PROBES)
     // The directions the screen did not cover (off screen, beyond the radius, hidden) take the probes' light.
     sum += (1.0 - covered) * probeIrradiance(X, nX);
 #endif

@@ -546,7 +546,7 @@ TEST_F(GLTest, ProbeVolumeShaderMatchesTheCpp) {
         glTextureParameteri(tex.back().id(), GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
         glTextureParameteri(tex.back().id(), GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
     }
-    v.uploadTextures(tex[0].id(), tex[1].id(), tex[2].id());
+    v.uploadTextures(tex[0].id(), tex[1].id(), tex[2].id(), tex[3].id(), false);
     gl::BufferHandle ubo = gl::createBuffer("probe uniforms");
     glNamedBufferStorage(ubo.id(), sizeof(ProbeVolumeUniforms), nullptr, GL_DYNAMIC_STORAGE_BIT);
     v.uploadUniforms(ubo.id());
@@ -609,7 +609,7 @@ TEST_F(GLTest, ProbeVolumeShaderMatchesTheCpp) {
     // Later uploads send only the tile rows the updates changed; the textures still equal the CPU arrays.
     s.probeRaysPerFrame = 5 * 128;
     v.update(s);
-    v.uploadTextures(tex[0].id(), tex[1].id(), tex[2].id());
+    v.uploadTextures(tex[0].id(), tex[1].id(), tex[2].id(), tex[3].id(), false);
     const std::vector<ProbeTextureDesc> descs = v.textures();
     for (size_t t = 0; t < descs.size(); ++t) {
         const ProbeTextureDesc& d = descs[t];

@@ -23,6 +23,8 @@ private:
 // The probe textures a pass that includes probe_volume.glsl reads (samplers uProbeIrradiance, uProbeDepth,
 // uProbeData), and its uniform block (binding 2) bound for the next draw.
 void readProbeVolume(PassTable& t);
+// The probes' per-direction radiance (sampler uProbeRadianceSH, probe_volume.glsl's probeRadianceSH()).
+void readProbeRadiance(PassTable& t);
 void bindProbeUniforms(const FrameContext& ctx);
 // The probe textures and the sky atlas ("Probe Sky Irradiance", sampler uProbeSky) of shaders/environment.glsl.
 void readProbeSky(PassTable& t);

@@ -122,6 +122,21 @@ void accumulateDepth(size_t n, const float* x, const float* y, const float* z, c
         }
 }
 
+// Real spherical harmonics of order 2 at unit direction d (Y00, Y1-1, Y10, Y11, Y2-2, Y2-1, Y20, Y21, Y22), as
+// shaders/probe_volume.glsl's probeSHBasis().
+constexpr int kSH = 9;
+void shBasis(const glm::vec3& d, float y[kSH]) {
+    y[0] = 0.282094792f;
+    y[1] = 0.488602512f * d.y;
+    y[2] = 0.488602512f * d.z;
+    y[3] = 0.488602512f * d.x;
+    y[4] = 1.092548431f * d.x * d.y;
+    y[5] = 1.092548431f * d.y * d.z;
+    y[6] = 0.315391565f * (3.0f * d.z * d.z - 1.0f);
+    y[7] = 1.092548431f * d.x * d.z;
+    y[8] = 0.546274215f * (d.x * d.x - d.y * d.y);
+}
+
 }  // namespace
 
 ProbeGrid fitProbeGrid(const Aabb& bounds, const Settings& s) {
@@ -188,6 +203,7 @@ ProbeVolume::ProbeVolume(const Scene& scene, const Settings& s, uint64_t seed, i
         depth_[i + 1] = maxDistance_ * maxDistance_;
     }
     data_.assign(size_t(tilesPerRow_) * tileRows_ * 4, 0.0f);
+    radianceSH_.assign(size_t(tilesPerRow_) * kSH * tileRows_ * 4, 0.0f);
     for (auto [dirs, n] : {std::pair{&irrDirs_, irrN_}, std::pair{&depthDirs_, depthN_}})
         for (int j = 0; j < n; ++j)
             for (int i = 0; i < n; ++i) {
@@ -293,6 +309,7 @@ void ProbeVolume::resetHistory() {
     // The bounce of the first updates reads the probes' own irradiance: none, as in a new volume (old light would
     // otherwise come back through it: a ghost of the old lighting, or multi-bounce light in a one-bounce run).
     for (size_t i = 0; i + 3 < irradiance_.size(); i += 4) irradiance_[i] = irradiance_[i + 1] = irradiance_[i + 2] = 0.0f;
+    std::fill(radianceSH_.begin(), radianceSH_.end(), 0.0f);
     updateIndex_ = 0;
     cursor_ = 0;
     for (size_t i = 0; i + 3 < sky_.size(); i += 4) sky_[i] = sky_[i + 1] = sky_[i + 2] = 0.0f;
@@ -314,16 +331,17 @@ glm::vec<C, float> ProbeVolume::sampleAtlas(const std::vector<float>& atlas, int
     return r;
 }
 
-glm::vec3 ProbeVolume::irradiance(const glm::vec3& x, const glm::vec3& n, float* weightSum) const {
-    if (weightSum) *weightSum = 0.0f;
-    if (!finite3(x) || !finite3(n) || !(glm::dot(n, n) > 1e-12f)) return glm::vec3(0.0f);
+float ProbeVolume::probeWeights(const glm::vec3& x, const glm::vec3& n, int probes[8], float weights[8]) const {
+    for (int i = 0; i < 8; ++i) {
+        probes[i] = -1;
+        weights[i] = 0.0f;
+    }
+    if (!finite3(x) || !finite3(n) || !(glm::dot(n, n) > 1e-12f)) return 0.0f;
     const glm::vec3 biased = x + n * normalBias_;
     const glm::ivec3 last = grid_.counts - 1;
     const glm::vec3 g = glm::clamp((biased - grid_.lo) / grid_.spacing - 0.5f, glm::vec3(-1.0f), glm::vec3(last));
     const glm::ivec3 base = glm::clamp(glm::ivec3(glm::floor(g)), glm::ivec3(0), last - 1);
     const glm::vec3 alpha = glm::clamp(g - glm::vec3(base), 0.0f, 1.0f);
-    const glm::vec2 octN = octahedral::encode(n);
-    glm::vec3 sum(0.0f);
     float total = 0.0f;
     for (int i = 0; i < 8; ++i) {
         const glm::ivec3 o(i & 1, (i >> 1) & 1, (i >> 2) & 1);
@@ -353,11 +371,41 @@ glm::vec3 ProbeVolume::irradiance(const glm::vec3& x, const glm::vec3& n, float*
         constexpr float kCrush = 0.2f;  // weights below this fall off cubically (fewer leaks)
         if (weight < kCrush) weight *= weight * weight / (kCrush * kCrush);
         weight *= trilinear;
-        sum += weight * glm::vec3(sampleAtlas<4>(irradiance_, irrN_, probe, octN));
+        probes[i] = probe;
+        weights[i] = weight;
         total += weight;
     }
+    if (total > 0.0f)
+        for (int i = 0; i < 8; ++i) weights[i] /= total;
+    return total;
+}
+
+glm::vec3 ProbeVolume::irradiance(const glm::vec3& x, const glm::vec3& n, float* weightSum) const {
+    int probes[8];
+    float weights[8];
+    const float total = probeWeights(x, n, probes, weights);
     if (weightSum) *weightSum = total;
-    return total > 0.0f ? sum / total : glm::vec3(0.0f);
+    const glm::vec2 octN = octahedral::encode(glm::dot(n, n) > 1e-12f ? n : glm::vec3(0, 0, 1));
+    glm::vec3 sum(0.0f);
+    for (int i = 0; i < 8; ++i)
+        if (probes[i] >= 0) sum += weights[i] * glm::vec3(sampleAtlas<4>(irradiance_, irrN_, probes[i], octN));
+    return sum;
+}
+
+glm::vec3 ProbeVolume::radiance(const glm::vec3& x, const glm::vec3& n, const glm::vec3& dir) const {
+    int probes[8];
+    float weights[8];
+    probeWeights(x, n, probes, weights);
+    float y[kSH];
+    shBasis(dir, y);
+    glm::vec3 sum(0.0f);
+    for (int i = 0; i < 8; ++i) {
+        if (probes[i] < 0) continue;
+        const float* c = &radianceSH_[4 * (size_t(probes[i] / tilesPerRow_) * tilesPerRow_ * kSH +
+                                           size_t(probes[i] % tilesPerRow_) * kSH)];
+        for (int k = 0; k < kSH; ++k) sum += weights[i] * y[k] * glm::vec3(c[4 * k], c[4 * k + 1], c[4 * k + 2]);
+    }
+    return sum;
 }
 
 ProbeUpdateStats ProbeVolume::update(const Settings& s) {
@@ -410,6 +458,7 @@ ProbeUpdateStats ProbeVolume::update(const Settings& s) {
     std::vector<float> newIrr(batch.size() * irrTexels * 4, 0.0f), newDepth(batch.size() * depthTexels * 3, 0.0f);
     std::vector<float> newSky(sky ? batch.size() * irrTexels * 4 : 0, 0.0f);  // as newIrr, the uniform sky alone
     std::vector<float> newSkyMap(skySamples ? batch.size() * irrTexels * 4 : 0, 0.0f);  // the map: sum c L / pdf / n
+    std::vector<float> newSH(batch.size() * (kSH * 3 + 1), 0.0f);  // per slot: sum of L * Y_k (rgb), rays with radiance
     std::vector<uint8_t> inside(batch.size(), 0);
     std::atomic<uint64_t> shadowRays{0};
     parallelFor(int(batch.size()), threads_, [&](int slot) {
@@ -438,6 +487,14 @@ ProbeUpdateStats ProbeVolume::update(const Settings& s) {
                 accumulateIrradiance(irrTexels, irrDirs_.x.data(), irrDirs_.y.data(), irrDirs_.z.data(), d,
                                      h.hit ? glm::vec3(0.0f) : uniformSky, sk, sk + irrTexels,
                                      sk + 2 * irrTexels, sk + 3 * irrTexels);
+            }
+            if (hasRadiance) {
+                float* sh = &newSH[size_t(slot) * (kSH * 3 + 1)];
+                float y[kSH];
+                shBasis(d, y);
+                for (int k = 0; k < kSH; ++k)
+                    for (int c = 0; c < 3; ++c) sh[3 * k + c] += radiance[c] * y[k];
+                sh[kSH * 3] += 1.0f;
             }
             if (hasRadiance)
                 accumulateIrradiance(irrTexels, irrDirs_.x.data(), irrDirs_.y.data(), irrDirs_.z.data(), d, radiance,
@@ -517,6 +574,17 @@ ProbeUpdateStats ProbeVolume::update(const Settings& s) {
                     }
                 }
             writeBorders(sky_, irrN_, 4, probe);
+        }
+        // Order-2 harmonics of the radiance: 4 pi / rays x the sum (the rays are spread evenly over the sphere).
+        const float* sh = &newSH[slot * (kSH * 3 + 1)];
+        if (sh[kSH * 3] > 0.0f) {
+            const float norm = 4.0f * kPi / sh[kSH * 3];
+            float* dst = &radianceSH_[4 * (size_t(row) * tilesPerRow_ * kSH + size_t(tile) * kSH)];
+            for (int k = 0; k < kSH; ++k)
+                for (int c = 0; c < 3; ++c) {
+                    const float v = norm * sh[3 * k + c];
+                    if (std::isfinite(v)) dst[4 * k + c] = alpha * dst[4 * k + c] + (1.0f - alpha) * v;
+                }
         }
         writeBorders(irradiance_, irrN_, 4, probe);
         writeBorders(depth_, depthN_, 2, probe);

@@ -19,6 +19,11 @@
 //                       r = mean distance, g = mean squared distance to the first surface (scene units).
 //   "Probe Data"        GL_RGBA32F, tilesPerRow x tileRows: xyz = the probe's offset from its grid position
 //                       (scene units), w = ProbeState as a float (1 = sampled; 0, -1 = not).
+//   "Probe Radiance SH" GL_RGBA32F, (tilesPerRow * 9) x tileRows: the radiance arriving at each probe per direction
+//                       as real spherical harmonics of order 2 (texel 9 * (i % tilesPerRow) + k, row i / tilesPerRow:
+//                       rgb = coefficient k, in the order Y00, Y1-1, Y10, Y11, Y2-2, Y2-1, Y20, Y21, Y22), projected
+//                       from the same rays and blended with the same hysteresis as the irradiance. The gather
+//                       subtracts the probes' estimate of the directions the screen covered (probeRadianceSH()).
 // RGBA16F also works for the irradiance (uploadTextures() sends floats, the driver converts) while it stays below
 // 65504; the depth needs RG32F (squared distances pass 65504 at 256 scene units).
 //
@@ -156,7 +161,10 @@ public:
     ProbeVolumeUniforms uniforms() const;
     // glTextureSubImage2D into textures allocated with (at least) the sizes of textures(): the tile rows the
     // updates since the last upload changed (everything with all = true or on the first call). 0 = skip.
-    void uploadTextures(GLuint irradianceTex, GLuint depthTex, GLuint dataTex, bool all = false);
+    void uploadTextures(GLuint irradianceTex, GLuint depthTex, GLuint dataTex, bool all = false) {
+        uploadTextures(irradianceTex, depthTex, dataTex, 0, all);
+    }
+    void uploadTextures(GLuint irradianceTex, GLuint depthTex, GLuint dataTex, GLuint radianceSHTex, bool all);
     // glNamedBufferSubData of uniforms() into a uniform buffer of at least sizeof(ProbeVolumeUniforms).
     void uploadUniforms(GLuint uniformBuffer) const;
 
@@ -168,6 +176,10 @@ public:
     const std::vector<float>& irradianceAtlas() const { return irradiance_; }  // RGBA
     const std::vector<float>& depthAtlas() const { return depth_; }            // RG
     const std::vector<float>& probeData() const { return data_; }              // RGBA
+    const std::vector<float>& radianceSH() const { return radianceSH_; }       // RGBA, 9 texels per probe
+    // Radiance arriving at world position x from direction dir (unit, pointing away from x), from the order-2
+    // harmonics of the probes around x weighted as irradiance() weighs them for a surface of normal n.
+    glm::vec3 radiance(const glm::vec3& x, const glm::vec3& n, const glm::vec3& dir) const;
 
 private:
     void place(const Settings& settings);
@@ -177,6 +189,8 @@ private:
     void writeBorders(std::vector<float>& atlas, int n, int channels, int probe);
     void writeProbeData(int probe);
     // Bilinear sample (as GL_LINEAR) of probe's tile at octahedral coordinate oct in [-1,1]^2.
+    // The normalised weights irradiance() gives the 8 probes around x (probe -1: none), and their sum before that.
+    float probeWeights(const glm::vec3& x, const glm::vec3& n, int probes[8], float weights[8]) const;
     template <int Channels>
     glm::vec<Channels, float> sampleAtlas(const std::vector<float>& atlas, int n, int probe, const glm::vec2& oct) const;
 
@@ -194,7 +208,7 @@ private:
     int activeCount_ = 0;
     size_t cursor_ = 0;  // round-robin position over the grid
     uint64_t updateIndex_ = 0;
-    std::vector<float> irradiance_, depth_, data_;
+    std::vector<float> irradiance_, depth_, data_, radianceSH_;
     std::vector<float> sky_;  // the sky irradiance atlas (RGBA), empty without an environment
     // The map's share of the sky, importance-sampled (a small sun is caught by few of the probe rays): built when
     // the map or environment.intensity changes.

@@ -18,6 +18,8 @@ std::vector<ProbeTextureDesc> ProbeVolume::textures() const {
         {"Probe Data", GL_RGBA32F, GL_RGBA, tilesPerRow_, tileRows_, 4, data_.data(),
          "Per probe: xyz = offset from its grid position (scene units), w = state (1 active, 0 inside geometry, "
          "-1 unused)"},
+        {"Probe Radiance SH", GL_RGBA32F, GL_RGBA, tilesPerRow_ * 9, tileRows_, 4, radianceSH_.data(),
+         "Radiance arriving at each probe as order-2 spherical harmonics: 9 texels per probe, rgb = coefficient"},
     };
 }
 
@@ -61,7 +63,7 @@ ProbeVolumeUniforms ProbeVolume::uniforms() const {
     return u;
 }
 
-void ProbeVolume::uploadTextures(GLuint irradianceTex, GLuint depthTex, GLuint dataTex, bool all) {
+void ProbeVolume::uploadTextures(GLuint irradianceTex, GLuint depthTex, GLuint dataTex, GLuint radianceSHTex, bool all) {
     if (all || !uploadedOnce_) {
         dirtyRowLo_ = 0;
         dirtyRowHi_ = tileRows_;
@@ -76,9 +78,9 @@ void ProbeVolume::uploadTextures(GLuint irradianceTex, GLuint depthTex, GLuint d
     glPixelStorei(GL_UNPACK_SKIP_ROWS, 0);
     glPixelStorei(GL_UNPACK_SKIP_PIXELS, 0);
     const std::vector<ProbeTextureDesc> descs = textures();
-    const GLuint ids[3] = {irradianceTex, depthTex, dataTex};
+    const GLuint ids[4] = {irradianceTex, depthTex, dataTex, radianceSHTex};
     if (dirtyRowLo_ < dirtyRowHi_)
-        for (int t = 0; t < 3; ++t) {
+        for (int t = 0; t < 4; ++t) {
             if (!ids[t]) continue;
             const ProbeTextureDesc& d = descs[t];
             const int texelsPerTileRow = d.height / tileRows_;
