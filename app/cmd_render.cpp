@@ -21,8 +21,14 @@ CommandRegistrar registrar("render", "Render a glTF scene headless (OSMesa) to a
     sub.add_option("--out", job->outDir, "Output folder")->capture_default_str();
     sub.add_option("--shaders", job->shaderDir, "Shader folder (default: the source tree's shaders/)");
     sub.add_option("--context", job->context, "OpenGL context: osmesa (llvmpipe) or egl (headless EGL: Mesa surfaceless or a GPU)")->capture_default_str();
+    sub.add_option("--time", job->time, "Seconds of the scene's glTF animations to render (the scene at that instant)")
+        ->check(CLI::Range(0.0, 1e7));
+    sub.add_option("--animate", job->animateFps, "Frames per second of animation time: each frame advances the clock by 1/FPS "
+                                                 "(--frames N then spans N/FPS seconds from --time)")->check(CLI::Range(0.0, 1e4));
+    sub.add_flag("--sequence", job->sequence, "Also write every frame as frame_NNNNN.png");
     settings->add(sub);
-    return [job, size, settings]() {
+    return [job, size, settings, &sub]() {
+        job->timeSet = sub.count("--time") > 0;
         parseSize(*size, job->width, job->height);
         job->settings = settings->build();
         if (job->scenePath.empty()) job->scenePath = defaultScenePath();

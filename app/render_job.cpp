@@ -1,5 +1,7 @@
 #include "app/render_job.h"
 
+#include "renderer/scene/animation.h"
+
 #include "renderer/core/image_io.h"
 #include "renderer/core/util.h"
 #include "renderer/gl/offscreen_context.h"
@@ -42,8 +44,25 @@ RenderJobResult runRenderJob(const RenderJob& job) {
     std::map<std::string, std::vector<double>> perPass;
     std::vector<std::string> passOrder;
     std::vector<double> frameMs;
+    const bool animate = job.animateFps > 0.0;
+    if ((job.timeSet || animate) && scene->animations.empty())
+        result.warnings.push_back(job.scenePath + ": --time/--animate given, but the scene has no animations");
+    if (job.timeSet && !animate) {  // the scene at that instant, every frame
+        applyAnimation(*scene, float(job.time));
+        renderer.sceneChanged(SceneChange::Transforms | SceneChange::Lights);
+    }
+    std::filesystem::create_directories(job.outDir);
     for (int f = 0; f < job.frames; ++f) {
+        if (animate) {
+            applyAnimation(*scene, float(job.time + double(f) / job.animateFps));
+            renderer.sceneChanged(SceneChange::Transforms);
+        }
         renderer.render(job.settings);
+        if (job.sequence) {
+            char name[32];
+            std::snprintf(name, sizeof(name), "/frame_%05d.png", f);
+            writePng8(job.outDir + name, job.width, job.height, 4, renderer.readDisplay());
+        }
         double total = 0.0;
         for (const auto& t : renderer.timings()) {
             if (!perPass.count(t.name)) passOrder.push_back(t.name);
@@ -54,7 +73,6 @@ RenderJobResult runRenderJob(const RenderJob& job) {
     }
     result.medianFrameMs = median(frameMs);
 
-    std::filesystem::create_directories(job.outDir);
     const std::string out = job.outDir + "/";
     writePng8(out + "final.png", job.width, job.height, 4, renderer.readDisplay());
     FloatImage final = renderer.readFinalRadiance();

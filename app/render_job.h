@@ -17,6 +17,10 @@ struct RenderJob {
     std::string outDir = "out/render";
     std::string shaderDir;  // "" = the source tree's shaders/
     std::string context = "osmesa";  // or "egl" (renderer/gl/offscreen_context.h)
+    double time = 0.0;        // --time: the glTF animations' clock (seconds) of the first frame
+    bool timeSet = false;     // --time given
+    double animateFps = 0.0;  // --animate: > 0 advances the clock by 1/fps each frame
+    bool sequence = false;    // --sequence: every frame as frame_NNNNN.png
     Settings settings;
 };
 

@@ -93,10 +93,42 @@ Renderer::~Renderer() = default;
 void Renderer::setScene(std::shared_ptr<const Scene> scene) {
     scene_ = scene ? std::move(scene) : std::make_shared<Scene>();
     sceneGpu_ = std::make_unique<SceneGpu>(*scene_);
+    lightBounds_ = scene_->bounds;
     probes_.reset();  // the volume traces the old scene
     shadowKey_ = 0;
     configValid_ = false;
     historyValid_ = false;
+}
+
+void Renderer::sceneChanged(unsigned changes) {
+    const bool geometry = changes & (unsigned(SceneChange::Transforms) | unsigned(SceneChange::Visibility));
+    if (changes & unsigned(SceneChange::Materials)) {
+        sceneGpu_ = std::make_unique<SceneGpu>(*scene_);  // materials are copied into it; previous matrices restart
+        historyValid_ = false;
+    } else if (geometry) {
+        sceneGpu_->updateObjects(*scene_);
+    }
+    if (geometry) {
+        const Aabb now = scene_->currentBounds();
+        lightBounds_ = now.valid() ? now : scene_->bounds;
+    }
+    // The shadow key hashes the lights and the scene version: it changes by itself.
+    if (changes & unsigned(SceneChange::Lights)) historyValid_ = false;  // old lighting must not linger
+    if (probes_ && (geometry || (changes & (unsigned(SceneChange::Lights) | unsigned(SceneChange::Materials))))) {
+        if (changes & unsigned(SceneChange::Materials)) probes_.reset();  // its tracer holds the old materials
+        else probes_->sceneChanged((changes & (unsigned(SceneChange::Lights) | unsigned(SceneChange::Visibility))) != 0);
+    }
+    configValid_ = configValid_ && !(changes & unsigned(SceneChange::Materials));  // emission may come or go
+}
+
+int Renderer::objectAt(int x, int y) const {
+    if (!textures_.has("Object ID") || frameIndex_ == 0) return -1;
+    const auto& e = textures_.entry("Object ID");
+    if (x < 0 || y < 0 || x >= e.width || y >= e.height) return -1;
+    GLuint id = 0;
+    glPixelStorei(GL_PACK_ALIGNMENT, 1);
+    glGetTextureSubImage(e.texture.id(), 0, x, e.height - 1 - y, 0, 1, 1, 1, GL_RED_INTEGER, GL_UNSIGNED_INT, sizeof(id), &id);
+    return int(id) - 1;
 }
 
 void Renderer::resize(int w, int h) {
@@ -150,7 +182,7 @@ void Renderer::setupLights(const Settings& s) {
     if (lights.size() > size_t(kMaxGpuLights))
         throw std::runtime_error((scene_->sourcePath.empty() ? std::string("scene") : scene_->sourcePath) + ": " + std::to_string(lights.size()) + " lights, more than the " +
                                  std::to_string(kMaxGpuLights) + " the renderer draws (shaders/lighting.glsl MAX_LIGHTS)");
-    const Aabb& b = scene_->bounds;
+    const Aabb& b = lightBounds_;
     const glm::vec3 center = b.valid() ? b.center() : glm::vec3(0.0f);
     const float R = std::max(b.radius(), 1e-6f);
     const int size = std::max(1, s.shadowMapSize);
@@ -207,6 +239,8 @@ void Renderer::setupLights(const Settings& s) {
     key = fnv1a(key, &size, sizeof(size));
     const void* scenePtr = sceneGpu_.get();
     key = fnv1a(key, &scenePtr, sizeof(scenePtr));
+    const uint64_t sceneVersion = sceneGpu_->version();  // objects moved or hidden: the shadows are redrawn
+    key = fnv1a(key, &sceneVersion, sizeof(sceneVersion));
     if (key == shadowKey_) return;  // lights unchanged: the buffer already holds them (static scenes)
     glNamedBufferData(lightSsbo_.id(), GLsizeiptr(gpu.size() * sizeof(GpuLight)), gpu.data(), GL_DYNAMIC_DRAW);
     shadowKey_ = key;
@@ -407,6 +441,7 @@ void Renderer::render(const Settings& user) {
     }
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
     prevCamera_ = camera_;
+    sceneGpu_->endFrame();
     historyValid_ = !rejected;
     ++frameIndex_;
 }
@@ -439,6 +474,7 @@ bool Renderer::checkTrials(const char* passName, int limitMs, double startMs) {
 FrameContext Renderer::makeContext(const Settings& s) {
     setupLights(s);
     uploadFrameUniforms(s);
+    sceneGpu_->beginFrame(historyValid_ && s.objectMotion);  // without: last frame's matrices = this frame's
     return FrameContext{s, config_, textures_, *shaders_, fbos_, *sceneGpu_, fullscreenVao_.id(), lightSsbo_.id(),
                         lightCount_, casters_, shadowKey_, width_, height_, historyValid_,
                         s.varyTaps ? float(frameIndex_ % 1024) * 0.618034f : 0.0f, probes_.get(), probeUbo_.id()};
@@ -470,12 +506,19 @@ FloatImage Renderer::readLayer(const std::string& layerName, int level, bool dec
     const int faces = cube ? 6 : 1;
     const bool two = d.format == GL_RG8_SNORM || d.format == GL_RG32F || d.format == GL_RG16F;
     const bool four = d.format == GL_RGBA8 || d.format == GL_RGBA16F || d.format == GL_RGBA32F;
-    int channels = depth || d.format == GL_R8 ? 1 : two ? 2 : four ? 4 : 3;
-    const GLenum fmt = depth ? GL_DEPTH_COMPONENT : channels == 1 ? GL_RED : channels == 2 ? GL_RG : channels == 3 ? GL_RGB : GL_RGBA;
+    const bool integer = d.format == GL_R32UI;  // Object ID: read as integers, returned as floats (exact below 2^24)
+    int channels = depth || d.format == GL_R8 || integer ? 1 : two ? 2 : four ? 4 : 3;
+    const GLenum fmt = depth ? GL_DEPTH_COMPONENT : integer ? GL_RED_INTEGER : channels == 1 ? GL_RED : channels == 2 ? GL_RG : channels == 3 ? GL_RGB : GL_RGBA;
     std::vector<float> raw(size_t(w) * h * channels * faces);
     glPixelStorei(GL_PACK_ALIGNMENT, 1);
     const int zoff = d.target == GL_TEXTURE_2D ? 0 : (cube ? layer * 6 : layer);
-    glGetTextureSubImage(e->texture.id(), level, 0, 0, zoff, w, h, faces, fmt, GL_FLOAT, GLsizei(raw.size() * sizeof(float)), raw.data());
+    if (integer) {
+        std::vector<uint32_t> ids(raw.size());
+        glGetTextureSubImage(e->texture.id(), level, 0, 0, zoff, w, h, faces, fmt, GL_UNSIGNED_INT, GLsizei(ids.size() * sizeof(uint32_t)), ids.data());
+        for (size_t i = 0; i < ids.size(); ++i) raw[i] = float(ids[i]);
+    } else {
+        glGetTextureSubImage(e->texture.id(), level, 0, 0, zoff, w, h, faces, fmt, GL_FLOAT, GLsizei(raw.size() * sizeof(float)), raw.data());
+    }
 
     FloatImage img;
     img.width = w * faces;

@@ -47,6 +47,11 @@ struct PassGraphNode {
     std::vector<PassGraphChannel> channels;  // the pass's table as the renderer bound it
 };
 
+// What changed in the Scene the renderer holds (Renderer::sceneChanged), OR-ed.
+enum class SceneChange : unsigned { Transforms = 1, Visibility = 2, Lights = 4, Materials = 8 };
+inline unsigned operator|(SceneChange a, SceneChange b) { return unsigned(a) | unsigned(b); }
+inline unsigned operator|(unsigned a, SceneChange b) { return a | unsigned(b); }
+
 struct RendererOptions {
     std::string shaderDir = DEEPGI_SHADER_DIR;
     TimingMode timing = TimingMode::WallClock;
@@ -64,6 +69,18 @@ public:
 
     void setScene(std::shared_ptr<const Scene> scene);  // uploads it; resets the history
     const Scene& scene() const { return *scene_; }
+    // After editing the Scene given to setScene (its owner keeps a non-const pointer; call
+    // Scene::updateWorldTransforms() first after moving nodes): `changes` = SceneChange bits. Transforms /
+    // Visibility: object matrices re-uploaded (each object's previous transform kept for motion: the G-buffer's
+    // Motion texture), shadow maps re-rendered, the probes' Embree scene refit (their history restarts on
+    // Visibility; moves keep it, under its hysteresis). Lights: shadows follow by themselves; the probes and the
+    // temporal history restart (no ghost of the old lighting). Materials: the GPU scene is rebuilt, the probe
+    // volume re-made, the history restarts.
+    void sceneChanged(unsigned changes);
+    void sceneChanged(SceneChange change) { sceneChanged(unsigned(change)); }
+    // Node index under pixel (x, y) (row 0 = top) of the last frame, -1 = none (sky, outside, no frame yet); from
+    // the "Object ID" texture, layer 1.
+    int objectAt(int x, int y) const;
     // 0 x 0 is allowed (a minimised window): render() then does nothing.
     void resize(int width, int height);
     int width() const { return width_; }
@@ -123,6 +140,7 @@ private:
     std::unique_ptr<gl::ShaderLibrary> shaders_;
     std::shared_ptr<const Scene> scene_;
     std::unique_ptr<SceneGpu> sceneGpu_;
+    Aabb lightBounds_;  // what the shadow maps cover: the scene's bounds now (moved objects included)
     TextureRegistry textures_;
     FramebufferCache fbos_;
     uint64_t fboGeneration_ = 0;

@@ -6,6 +6,8 @@ uniform sampler2D uTex2DA;
 uniform sampler2DArray uTexArrA;
 uniform sampler2D uTex2DB;
 uniform sampler2DArray uTexArrB;
+uniform usampler2DArray uTexArrUA;  // integer arrays (Object ID)
+uniform usampler2DArray uTexArrUB;
 
 uniform int uHasB;
 uniform int uIsArray[2];
@@ -13,7 +15,7 @@ uniform int uLayer[2];    // array layer (cube arrays: first face of the cube)
 uniform int uFaces[2];    // 1, or 6 for a cube shown as 6 faces side by side
 uniform int uLevel[2];
 uniform ivec2 uSize[2];   // size of the shown level, one face
-uniform int uMode[2];     // resolved mode: 1 raw, 2 radiance, 3 depth, 4 normal
+uniform int uMode[2];     // resolved mode: 1 raw, 2 radiance, 3 depth, 4 normal, 5 object id (integer array)
 
 uniform int uChannel;     // 0 rgb, 1 r, 2 g, 3 b, 4 a, 5 luminance
 uniform float uExposure;  // linear scale
@@ -50,6 +52,8 @@ vec3 toSrgb(vec3 c) {
 vec4 fetch(int i, ivec2 t) {
     int face = t.x / uSize[i].x;
     ivec2 p = ivec2(t.x - face * uSize[i].x, t.y);
+    if (uMode[i] == 5) return vec4(float(i == 0 ? texelFetch(uTexArrUA, ivec3(p, uLayer[0]), 0).r
+                                                : texelFetch(uTexArrUB, ivec3(p, uLayer[1]), 0).r));
     if (i == 0) {
         if (uIsArray[0] != 0) return texelFetch(uTexArrA, ivec3(p, uLayer[0] + face), uLevel[0]);
         return texelFetch(uTex2DA, p, uLevel[0]);
@@ -78,6 +82,9 @@ void main() {
         v = vec4(vec3(g), 1.0);
     } else if (mode == 4) {
         v = vec4(decodeOct(raw.rg) * 0.5 + 0.5, 1.0);
+    } else if (mode == 5) {
+        uint id = uint(raw.r), h = id * 2654435761u;  // a stable colour per object, black for none
+        v = id == 0u ? vec4(0.0, 0.0, 0.0, 1.0) : vec4(vec3((h >> 8u) & 255u, (h >> 16u) & 255u, (h >> 24u) & 255u) / 255.0 * 0.8 + 0.2, 1.0);
     } else {
         if (mode == 2) v.rgb *= uExposure;
         if (uUseRange != 0) v = (v - uRange.x) / max(uRange.y - uRange.x, 1e-20);

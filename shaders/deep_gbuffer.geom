@@ -5,6 +5,10 @@ layout(triangles) in;
 layout(triangle_strip, max_vertices = 6) out;
 in VS { vec3 world; vec3 normal; vec2 uv; } vs[];
 out GS { vec3 world; vec3 normal; vec2 uv; } gs;
+in vec3 vsPrevWorld[];
+flat in uint vsObjectId[];
+out vec3 gsPrevWorld;      // the surface's position last frame (per-object motion)
+flat out uint gsObjectId;
 uniform int uFirstLayer;  // 0, or 1 for the second pass of depth peeling
 uniform int uLayerCount;  // 1 or 2
 void main() {
@@ -16,6 +20,8 @@ void main() {
             gs.world = vs[i].world;
             gs.normal = vs[i].normal;
             gs.uv = vs[i].uv;
+            gsPrevWorld = vsPrevWorld[i];
+            gsObjectId = vsObjectId[i];
             gl_Position = uViewProj * vec4(vs[i].world, 1.0);
             EmitVertex();
         }

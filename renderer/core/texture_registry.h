@@ -31,7 +31,7 @@ struct SizeRule {
     bool operator!=(const SizeRule& o) const { return !(*this == o); }
 };
 // Color: linear [0,1] colour (albedo); Display: already sRGB-encoded for the screen.
-enum class Visualize { Color, Radiance, Depth, Normal, ShadowDepth, Display };
+enum class Visualize { Color, Radiance, Depth, Normal, ShadowDepth, Display, ObjectId };  // ObjectId: R32UI, a colour per id
 // Which total a texture counts towards in the memory report.
 // Scratch: content that lives only inside one pass (ping-pong targets); never a frame's result.
 enum class MemoryGroup { GBuffer, Radiosity, Extra, Scratch };

@@ -10,13 +10,18 @@ namespace deepgi {
 
 namespace {
 
+constexpr int kObjectIdMode = 5;  // buffer_view.frag: a colour per integer id (Object ID), whatever the mode
+constexpr int kUnitUintArray[2] = {4, 5};  // integer (R32UI) arrays: a usampler of their own
+
 int resolveMode(ViewMode m, Visualize vis) {
+    if (vis == Visualize::ObjectId) return kObjectIdMode;
     if (m != ViewMode::Auto) return int(m);
     switch (vis) {
         case Visualize::Radiance:
         case Visualize::Color: return int(ViewMode::Radiance);  // linear colour: exposure, then sRGB like radiance
         case Visualize::Depth: return int(ViewMode::Depth);
         case Visualize::Normal: return int(ViewMode::Normal);
+        case Visualize::ObjectId: return kObjectIdMode;
         default: return int(ViewMode::Raw);
     }
 }
@@ -42,6 +47,8 @@ struct BufferViewPass::Program : gl::Program {
         setSampler("uTexArrA", kUnitArray[0]);
         setSampler("uTex2DB", kUnit2D[1]);
         setSampler("uTexArrB", kUnitArray[1]);
+        setSampler("uTexArrUA", kUnitUintArray[0]);
+        setSampler("uTexArrUB", kUnitUintArray[1]);
     }
     Source source[2]{{*this, 0}, {*this, 1}};
     gl::Uniform<bool> hasB{*this, "uHasB"};
@@ -134,8 +141,10 @@ void BufferViewPass::draw(gl::ShaderLibrary& shaders, const BufferSource& a, con
         const BufferSource& s = *srcs[i];
         const bool array = s.target != GL_TEXTURE_2D;
         const GLuint tex = s.valid() ? viewOf(s) : 0;
+        const bool uintArray = array && s.format == GL_R32UI;
         glBindTextureUnit(GLuint(kUnit2D[i]), array ? 0 : tex);
-        glBindTextureUnit(GLuint(kUnitArray[i]), array ? tex : 0);
+        glBindTextureUnit(GLuint(kUnitArray[i]), array && !uintArray ? tex : 0);
+        glBindTextureUnit(GLuint(kUnitUintArray[i]), uintArray ? tex : 0);
         const Program::Source& u = prog.source[i];
         u.isArray.set(array);
         u.layer.set(s.target == GL_TEXTURE_CUBE_MAP_ARRAY ? s.layer * 6 : s.layer);
@@ -145,7 +154,7 @@ void BufferViewPass::draw(gl::ShaderLibrary& shaders, const BufferSource& a, con
         u.size.set(glm::ivec2(std::max(1, s.width >> s.level), std::max(1, s.height >> s.level)));
     }
     // Depth textures may carry a compare mode (shadow maps): a sampler object without it makes texelFetch defined.
-    for (GLuint u = 0; u < 4; ++u) glBindSampler(u, sampler_.id());
+    for (GLuint u = 0; u < 6; ++u) glBindSampler(u, sampler_.id());
 
     prog.hasB.set(hasB);
     prog.channel.set(int(p.channel));
@@ -171,7 +180,7 @@ void BufferViewPass::draw(gl::ShaderLibrary& shaders, const BufferSource& a, con
     glBindVertexArray(vao_.id());
     glDrawArrays(GL_TRIANGLES, 0, 3);
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
-    for (GLuint u = 0; u < 4; ++u) {
+    for (GLuint u = 0; u < 6; ++u) {
         glBindSampler(u, 0);
         glBindTextureUnit(u, 0);
     }
@@ -202,6 +211,13 @@ TexelBlock BufferViewPass::readTexels(const BufferSource& s, int x0, int y0, int
     b.values.assign(size_t(b.width) * b.height * b.channels, 0.0f);
     const int z = s.target == GL_TEXTURE_2D ? 0 : cube ? s.layer * 6 + face : s.layer;
     glPixelStorei(GL_PACK_ALIGNMENT, 1);
+    if (s.format == GL_R32UI) {  // integer ids, shown as their values
+        std::vector<uint32_t> ids(b.values.size());
+        glGetTextureSubImage(s.texture, s.level, cx0 - minX, cy0, z, b.width, b.height, 1, GL_RED_INTEGER, GL_UNSIGNED_INT,
+                             GLsizei(ids.size() * sizeof(uint32_t)), ids.data());
+        for (size_t i = 0; i < ids.size(); ++i) b.values[i] = float(ids[i]);
+        return b;
+    }
     glGetTextureSubImage(s.texture, s.level, cx0 - minX, cy0, z, b.width, b.height, 1, fmt, GL_FLOAT,
                          GLsizei(b.values.size() * sizeof(float)), b.values.data());
     return b;

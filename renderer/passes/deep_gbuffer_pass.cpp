@@ -21,6 +21,11 @@ void DeepGBufferPass::table(const PipelineConfig& c, PassTable& t) const {
     if (c.emission)
         t.write({"Emission", {"Emission 1", "Emission 2"}, GL_R11F_G11F_B10F, GL_TEXTURE_2D_ARRAY, SizeRule::screen(), 1,
                  MemoryGroup::Extra, Visualize::Radiance, "Emitted radiance of both layers (only for scenes with emissive materials)"});
+    // Scene editing (issue 14): which node each pixel shows, and how far its surface moved since last frame.
+    t.write({"Object ID", {"Object ID 1", "Object ID 2"}, GL_R32UI, GL_TEXTURE_2D_ARRAY, SizeRule::screen(), 1,
+             MemoryGroup::Extra, Visualize::ObjectId, "Node index + 1 of the surface of each layer (0 = sky): picking"});
+    t.write({"Motion", {"Motion 1", "Motion 2"}, GL_RGBA16F, GL_TEXTURE_2D_ARRAY, SizeRule::screen(), 1, MemoryGroup::Extra,
+             Visualize::Color, "World-space position change of each layer's surface since last frame (previous - current; moving objects)"});
     if (c.depthPeel)
         t.write({"Peel Depth", {"Peel Depth"}, GL_DEPTH_COMPONENT32, GL_TEXTURE_2D, SizeRule::screen(), 1,
                  MemoryGroup::Extra, Visualize::Depth, "Copy of this frame's layer-1 depth for exact depth peeling (depth_peel mode only)"},
@@ -55,6 +60,8 @@ void DeepGBufferPass::execute(FrameContext& ctx) {
                                                       {GL_COLOR_ATTACHMENT0, ctx.texture("Albedo")},
                                                       {GL_COLOR_ATTACHMENT1, ctx.texture("Normal")}};
     if (ctx.config.emission) atts.push_back({GL_COLOR_ATTACHMENT2, ctx.texture("Emission")});
+    atts.push_back({GL_COLOR_ATTACHMENT5, ctx.texture("Object ID")});
+    atts.push_back({GL_COLOR_ATTACHMENT6, ctx.texture("Motion")});
     GLuint fbo = ctx.fbos.get(atts, "deep G-buffer");
     glBindFramebuffer(GL_FRAMEBUFFER, fbo);
     glViewport(0, 0, w, h);
@@ -66,6 +73,9 @@ void DeepGBufferPass::execute(FrameContext& ctx) {
     glClearBufferfv(GL_COLOR, 0, zero);
     glClearBufferfv(GL_COLOR, 1, zero);
     if (ctx.config.emission) glClearBufferfv(GL_COLOR, 2, zero);
+    const GLuint noObject[4] = {0, 0, 0, 0};
+    glClearBufferuiv(GL_COLOR, 5, noObject);
+    glClearBufferfv(GL_COLOR, 6, zero);
     const float one = 1.0f;
     glClearBufferfv(GL_DEPTH, 0, &one);
 

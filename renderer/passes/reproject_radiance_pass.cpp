@@ -5,6 +5,7 @@ namespace deepgi {
 void readReprojectionInputs(PassTable& t) {
     t.read("Depth", "uDepth").level(Levels::Base);
     t.read("Last Depth", "uLastDepthTex");
+    t.read("Motion", "uMotion");  // each surface's own motion (deep G-buffer pass)
 }
 
 void ReprojectionUniforms::set(const FrameContext& ctx) const {

@@ -77,8 +77,7 @@ ProbeTracer::ProbeTracer(const Scene& scene) : impl_(std::make_unique<Impl>()) {
             rtcReleaseGeometry(geom);
             throw std::runtime_error("probes: cannot allocate Embree buffers for '" + part.name + "': " + m.error);
         }
-        for (size_t v = 0; v < part.vertices.size(); ++v)
-            for (int c = 0; c < 3; ++c) pos[3 * v + c] = part.vertices[v].position[c];
+        g.writePositions(pos);  // moved where the part's node is now
         std::copy(part.indices.begin(), part.indices.begin() + nTri * 3, idx);
         m.geoms.push_back(g);
         rtcSetGeometryUserData(geom, &m.geoms.back());
@@ -86,6 +85,7 @@ ProbeTracer::ProbeTracer(const Scene& scene) : impl_(std::make_unique<Impl>()) {
             rtcSetGeometryIntersectFilterFunction(geom, cutOutFilter);
             rtcSetGeometryOccludedFilterFunction(geom, cutOutFilter);
         }
+        if (!scene.partVisible(int(&part - scene.parts.data()))) rtcDisableGeometry(geom);
         rtcCommitGeometry(geom);
         rtcAttachGeometryByID(m.scene, geom, unsigned(m.geoms.size() - 1));
         rtcReleaseGeometry(geom);
@@ -101,6 +101,8 @@ ProbeTracer::ProbeTracer(const Scene& scene) : impl_(std::make_unique<Impl>()) {
 }
 
 ProbeTracer::~ProbeTracer() = default;
+
+void ProbeTracer::update(const Scene& scene) { refitTracedScene(impl_->scene, impl_->geoms, scene); }
 
 ProbeHit ProbeTracer::intersect(const glm::vec3& o, const glm::vec3& d, float tnear, float tfar) const {
     RTCIntersectContext ctx;
@@ -126,11 +128,11 @@ ProbeHit ProbeTracer::intersect(const glm::vec3& o, const glm::vec3& d, float tn
     const Vertex &a = g.part->vertices[tri.x], &b = g.part->vertices[tri.y], &c = g.part->vertices[tri.z];
     h.hit = true;
     h.distance = rh.ray.tfar;
-    h.position = w * a.position + u * b.position + v * c.position;
+    h.position = g.toWorld(w * a.position + u * b.position + v * c.position);
     glm::vec3 ng = g.faceNormal(tri);
     const float ngLen = glm::length(ng);
     ng = ngLen > 0.0f ? ng / ngLen : -d;
-    glm::vec3 n = w * a.normal + u * b.normal + v * c.normal;
+    glm::vec3 n = g.toWorldNormal(w * a.normal + u * b.normal + v * c.normal);
     const float nLen = glm::length(n);
     n = (nLen > 1e-12f && std::isfinite(nLen)) ? n / nLen : ng;
     if (glm::dot(ng, d) > 0.0f) {

@@ -32,6 +32,8 @@ public:
     ProbeTracer(const ProbeTracer&) = delete;
     ProbeTracer& operator=(const ProbeTracer&) = delete;
 
+    // Follows a scene edit (moved or hidden parts): vertex buffers rewritten, Embree scene recommitted. Not thread-safe.
+    void update(const Scene& scene);
     // Nearest surface along origin + t*dir, t in (tnear, tfar). Thread-safe.
     ProbeHit intersect(const glm::vec3& origin, const glm::vec3& dir, float tnear, float tfar) const;
     // Irradiance at a front-face hit from every light, with shadow rays (no albedo, no 1/pi), as the path tracer

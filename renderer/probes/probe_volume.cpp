@@ -499,3 +499,12 @@ void ProbeVolume::writeBorders(std::vector<float>& atlas, int n, int ch, int pro
 }
 
 }  // namespace deepgi
+
+namespace deepgi {
+
+void ProbeVolume::sceneChanged(bool restart) {
+    tracer_.update(scene_);
+    if (restart) resetHistory();
+}
+
+}  // namespace deepgi

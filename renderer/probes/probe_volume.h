@@ -110,6 +110,10 @@ public:
     // Restarts every probe's history (e.g. after the lights moved): the next update of a probe replaces it, and the
     // updates from then on (rotations, round-robin order) are those of a new volume.
     void resetHistory();
+    // After a scene edit (issue 14): the tracer follows moved/hidden parts; restart = every probe's history restarts
+    // too (lights or visibility changed). Moves alone keep it: restarting every frame of an animation would leave
+    // the probes dark, and their hysteresis bounds the lag.
+    void sceneChanged(bool restart);
 
     // Irradiance at world position x on a surface of unit normal n, as shaders/probe_volume.glsl computes it.
     // Safe from many threads, not during update().

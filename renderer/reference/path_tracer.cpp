@@ -185,17 +185,14 @@ struct ReferenceTracer::Impl {
                 rtcReleaseGeometry(geom);
                 throw std::runtime_error("reference: cannot allocate Embree buffers for '" + part.name + "': " + error);
             }
-            for (size_t v = 0; v < part.vertices.size(); ++v) {
-                pos[3 * v + 0] = part.vertices[v].position.x;
-                pos[3 * v + 1] = part.vertices[v].position.y;
-                pos[3 * v + 2] = part.vertices[v].position.z;
-            }
+            g.writePositions(pos);  // moved where the part's node is now
             std::copy(part.indices.begin(), part.indices.begin() + nTri * 3, idx);
             geoms.push_back(g);  // reserved above: the user pointer stays valid
             const Material& m = *g.material;
             rtcSetGeometryUserData(geom, &geoms.back());
             if (!m.doubleSided || m.masked()) rtcSetGeometryIntersectFilterFunction(geom, intersectFilter);
             if (m.masked()) rtcSetGeometryOccludedFilterFunction(geom, occludedFilter);
+            if (!scene.partVisible(int(&part - scene.parts.data()))) rtcDisableGeometry(geom);
             rtcCommitGeometry(geom);
             rtcAttachGeometryByID(rtcScene.get(), geom, unsigned(geoms.size() - 1));
             rtcReleaseGeometry(geom);
@@ -210,11 +207,11 @@ struct ReferenceTracer::Impl {
         const float u = rh.hit.u, v = rh.hit.v, w = 1.0f - u - v;
         const Vertex &a = g.part->vertices[tri.x], &b = g.part->vertices[tri.y], &c = g.part->vertices[tri.z];
         Surface s;
-        s.position = w * a.position + u * b.position + v * c.position;
+        s.position = g.toWorld(w * a.position + u * b.position + v * c.position);
         glm::vec3 ng = g.faceNormal(tri);
         const float ngLen = glm::length(ng);
         ng = ngLen > 0.0f ? ng / ngLen : -dir;
-        glm::vec3 n = w * a.normal + u * b.normal + v * c.normal;
+        glm::vec3 n = g.toWorldNormal(w * a.normal + u * b.normal + v * c.normal);
         const float nLen = glm::length(n);
         n = (nLen > 1e-12f && std::isfinite(nLen)) ? n / nLen : ng;
         if (g.material->doubleSided && glm::dot(ng, dir) > 0.0f) {
@@ -327,6 +324,7 @@ struct ReferenceTracer::Impl {
 
 ReferenceTracer::ReferenceTracer(const Scene& scene) : impl_(std::make_unique<Impl>(scene)) {}
 ReferenceTracer::~ReferenceTracer() = default;
+void ReferenceTracer::update() { refitTracedScene(impl_->rtcScene.get(), impl_->geoms, impl_->scene); }
 
 namespace {
 

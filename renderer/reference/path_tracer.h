@@ -53,6 +53,9 @@ public:
 
     // Throws std::invalid_argument for a bad size, spp, bounce count or thread count.
     ReferenceResult render(const Camera& camera, const Settings& settings, const ReferenceOptions& options) const;
+    // Follows an edit of the Scene (moved or hidden parts; lights are read by every render): vertex buffers
+    // rewritten and the Embree scene recommitted.
+    void update();
 
 private:
     struct Impl;

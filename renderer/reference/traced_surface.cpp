@@ -2,6 +2,8 @@
 
 #include "renderer/core/image_io.h"
 
+#include <embree3/rtcore.h>
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -79,6 +81,47 @@ namespace deepgi {
 
 TracedSurface::TracedSurface(const Scene& scene, const MeshPart& p)
     : part(&p), material(&scene.material(p.material)), baseTexture(makeTextureView(scene, material->baseColorTexture)),
-      emissiveTexture(makeTextureView(scene, material->emissiveTexture)) {}
+      emissiveTexture(makeTextureView(scene, material->emissiveTexture)) {
+    setModel(scene.partModel(int(&p - scene.parts.data())));
+}
+
+void TracedSurface::setModel(const glm::mat4& m) {
+    model = m;
+    moved = m != glm::mat4(1.0f);
+    const glm::mat3 m3(m);
+    normalMatrix = glm::mat3(glm::cross(m3[1], m3[2]), glm::cross(m3[2], m3[0]), glm::cross(m3[0], m3[1]));
+    if (glm::determinant(m3) < 0.0f) normalMatrix = -normalMatrix;
+}
+
+void TracedSurface::writePositions(float* xyz) const {
+    for (size_t v = 0; v < part->vertices.size(); ++v) {
+        const glm::vec3 p = toWorld(part->vertices[v].position);
+        for (int c = 0; c < 3; ++c) xyz[3 * v + size_t(c)] = p[c];
+    }
+}
+
+// Vertex buffers rewritten (instances would refit nothing cheaper for the few-object scenes edited by hand, and
+// would change both tracers' hit code); only the geometries whose placement changed are touched.
+void refitTracedScene(void* rtcScenePtr, std::vector<TracedSurface>& geoms, const Scene& scene) {
+    RTCScene rs = static_cast<RTCScene>(rtcScenePtr);
+    for (size_t i = 0; i < geoms.size(); ++i) {
+        TracedSurface& g = geoms[i];
+        RTCGeometry geom = rtcGetGeometry(rs, unsigned(i));
+        if (!geom) continue;
+        const int pi = int(g.part - scene.parts.data());
+        const glm::mat4 m = scene.partModel(pi);
+        if (m != g.model) {
+            g.setModel(m);
+            if (auto* pos = static_cast<float*>(rtcGetGeometryBufferData(geom, RTC_BUFFER_TYPE_VERTEX, 0))) {
+                g.writePositions(pos);
+                rtcUpdateGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0);
+                rtcCommitGeometry(geom);
+            }
+        }
+        if (scene.partVisible(pi)) rtcEnableGeometry(geom);
+        else rtcDisableGeometry(geom);
+    }
+    rtcCommitScene(rs);
+}
 
 }  // namespace deepgi

@@ -7,6 +7,7 @@
 #include <glm/glm.hpp>
 
 #include <cstdint>
+#include <vector>
 
 namespace deepgi {
 
@@ -27,18 +28,29 @@ struct TracedSurface {
     const MeshPart* part = nullptr;
     const Material* material = nullptr;
     TextureView baseTexture, emissiveTexture;
+    // The part's current placement (Scene::partModel): the Embree buffer holds moved positions; positions and
+    // normals interpolated from part->vertices (rest pose) go through toWorld / toWorldNormal.
+    bool moved = false;
+    glm::mat4 model{1.0f};
+    glm::mat3 normalMatrix{1.0f};  // cofactor of mat3(model): inverse transpose up to a positive scale
 
     TracedSurface() = default;
-    TracedSurface(const Scene& scene, const MeshPart& p);
+    TracedSurface(const Scene& scene, const MeshPart& p);  // also takes the part's current model matrix
+
+    void setModel(const glm::mat4& m);
+    glm::vec3 toWorld(const glm::vec3& p) const { return moved ? glm::vec3(model * glm::vec4(p, 1.0f)) : p; }
+    glm::vec3 toWorldNormal(const glm::vec3& n) const { return moved ? normalMatrix * n : n; }
+    // The Embree vertex buffer: 3 floats per vertex, moved.
+    void writePositions(float* xyz) const;
 
     glm::uvec3 triangle(unsigned prim) const {
         const uint32_t* i = &part->indices[size_t(prim) * 3];
         return {i[0], i[1], i[2]};
     }
-    // Counter-clockwise (glTF front) face normal, not normalised.
+    // Counter-clockwise (glTF front) face normal in world space now, not normalised.
     glm::vec3 faceNormal(const glm::uvec3& t) const {
         const glm::vec3& p0 = part->vertices[t.x].position;
-        return glm::cross(part->vertices[t.y].position - p0, part->vertices[t.z].position - p0);
+        return toWorldNormal(glm::cross(part->vertices[t.y].position - p0, part->vertices[t.z].position - p0));
     }
     glm::vec2 uvAt(const glm::uvec3& t, float u, float v) const {
         return (1.0f - u - v) * part->vertices[t.x].uv + u * part->vertices[t.y].uv + v * part->vertices[t.z].uv;
@@ -53,5 +65,9 @@ struct TracedSurface {
         return material->masked() && alphaAt(t, u, v) < material->alphaCutoff;
     }
 };
+
+// After a scene edit: each geometry's vertex buffer rewritten where its part moved, hidden parts disabled, and the
+// Embree scene recommitted (geometry id i = geoms[i]). `rtcScene` is an RTCScene.
+void refitTracedScene(void* rtcScene, std::vector<TracedSurface>& geoms, const Scene& scene);
 
 }  // namespace deepgi

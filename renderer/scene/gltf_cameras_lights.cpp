@@ -31,6 +31,7 @@ void GltfReader::addCamera(const tinygltf::Node& node, const glm::mat4& world) {
         c.zfar = float(gc.perspective.zfar);
     }
     c.cameraToWorld = world;
+    c.node = currentNode_;
     scene_.cameras.push_back(std::move(c));
 }
 
@@ -54,6 +55,7 @@ void GltfReader::addLight(const tinygltf::Node& node, int li, const glm::mat4& w
     l.range = float(gl.range);
     l.position = glm::vec3(world * glm::vec4(0.0f, 0.0f, 0.0f, 1.0f));
     l.direction = glm::vec3(world * glm::vec4(0.0f, 0.0f, -1.0f, 0.0f));  // normalised by validateLight
+    l.node = currentNode_;
     if (l.type == LightType::Spot) {
         l.outerConeAngle = float(gl.spot.outerConeAngle);
         l.innerConeAngle = float(gl.spot.innerConeAngle);

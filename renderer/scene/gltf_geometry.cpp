@@ -344,6 +344,7 @@ void GltfReader::addMesh(int meshIndex, const glm::mat4& world) {
 
         MeshPart part;
         part.name = name;
+        part.node = currentNode_;
         if (prim.material >= 0 && size_t(prim.material) >= scene_.materials.size())
             warn(what + ": material " + std::to_string(prim.material) + " does not exist; using the default");
         else

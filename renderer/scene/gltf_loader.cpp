@@ -155,6 +155,38 @@ glm::mat4 localMatrix(const tinygltf::Node& n) {
     return t * r * s;
 }
 
+// The node's local transform as TRS: the file's own TRS (rotation normalised as localMatrix does), or its matrix
+// decomposed (a sheared matrix loses its shear: *sheared is set).
+Transform localTransform(const tinygltf::Node& n, bool* sheared) {
+    Transform t;
+    *sheared = false;
+    if (n.matrix.size() == 16) {
+        const glm::mat4 m = localMatrix(n);
+        t.translation = glm::vec3(m[3]);
+        glm::mat3 r(m);
+        for (int k = 0; k < 3; ++k) t.scale[k] = glm::length(r[k]);
+        if (glm::determinant(r) < 0.0f) t.scale.x = -t.scale.x;
+        for (int k = 0; k < 3; ++k) r[k] = t.scale[k] != 0.0f ? r[k] / t.scale[k] : glm::vec3(float(k == 0), float(k == 1), float(k == 2));
+        const float skew = std::abs(glm::dot(r[0], r[1])) + std::abs(glm::dot(r[1], r[2])) + std::abs(glm::dot(r[0], r[2]));
+        *sheared = !(skew < 1e-3f);
+        t.rotation = glm::normalize(glm::quat_cast(r));
+        if (!std::isfinite(t.rotation.w)) t.rotation = glm::quat(1.0f, 0.0f, 0.0f, 0.0f);
+        return t;
+    }
+    if (n.translation.size() == 3) t.translation = glm::vec3(float(n.translation[0]), float(n.translation[1]), float(n.translation[2]));
+    if (n.rotation.size() == 4) {
+        glm::quat q;
+        q.x = float(n.rotation[0]);
+        q.y = float(n.rotation[1]);
+        q.z = float(n.rotation[2]);
+        q.w = float(n.rotation[3]);
+        const float len = glm::length(q);
+        if (std::isfinite(len) && len > 0.0f) t.rotation = q / len;
+    }
+    if (n.scale.size() == 3) t.scale = glm::vec3(float(n.scale[0]), float(n.scale[1]), float(n.scale[2]));
+    return t;
+}
+
 }  // namespace
 
 Scene GltfReader::run() {
@@ -165,7 +197,9 @@ Scene GltfReader::run() {
     decodeDraco();
     loadMaterials();
     traverse();
+    loadAnimations();
     validateScene(scene_);
+    scene_.ensureNodes();
     scene_.computeBounds();
     scene_.loadPeakBytes = budget_.peak();
     return std::move(scene_);
@@ -292,7 +326,7 @@ void GltfReader::parse() {
 
 const std::set<std::string>& supportedExtensions() {
     static const std::set<std::string> supported = {
-        "KHR_lights_punctual", "KHR_materials_emissive_strength", "KHR_mesh_quantization", "KHR_texture_transform",
+        "KHR_lights_punctual", "KHR_materials_emissive_strength", "KHR_node_visibility", "KHR_mesh_quantization", "KHR_texture_transform",
         "KHR_draco_mesh_compression", "EXT_meshopt_compression"};
     return supported;
 }
@@ -328,10 +362,12 @@ void GltfReader::traverse() {
     }
     std::vector<char> visited(model_.nodes.size(), 0);
     // Iterative depth-first walk (no recursion: deep hierarchies cannot overflow the stack).
-    std::vector<std::pair<int, glm::mat4>> stack;
-    for (auto it = roots.rbegin(); it != roots.rend(); ++it) stack.emplace_back(*it, glm::mat4(1.0f));
+    struct Visit { int node; glm::mat4 parentWorld; int parentSceneNode; };
+    std::vector<Visit> stack;
+    sceneNodeOf_.assign(model_.nodes.size(), -1);
+    for (auto it = roots.rbegin(); it != roots.rend(); ++it) stack.push_back({*it, glm::mat4(1.0f), -1});
     while (!stack.empty()) {
-        auto [ni, parent] = stack.back();
+        auto [ni, parent, parentNode] = stack.back();
         stack.pop_back();
         if (ni < 0 || size_t(ni) >= model_.nodes.size()) fail("node " + std::to_string(ni) + " out of range");
         if (visited[size_t(ni)])
@@ -339,6 +375,15 @@ void GltfReader::traverse() {
         visited[size_t(ni)] = 1;
         const auto& node = model_.nodes[size_t(ni)];
         const glm::mat4 world = parent * localMatrix(node);
+        bool sheared = false;
+        const Transform local = localTransform(node, &sheared);
+        currentNode_ = scene_.addNode(node.name.empty() ? "node[" + std::to_string(ni) + "]" : node.name, parentNode, local);
+        sceneNodeOf_[size_t(ni)] = currentNode_;
+        auto vis = node.extensions.find("KHR_node_visibility");  // what saveGltf writes for hidden nodes
+        if (vis != node.extensions.end() && vis->second.IsObject() && vis->second.Has("visible") &&
+            vis->second.Get("visible").IsBool() && !vis->second.Get("visible").Get<bool>())
+            scene_.nodes[size_t(currentNode_)].visible = false;
+        if (sheared) warn("node '" + scene_.nodes[size_t(currentNode_)].name + "': its matrix has shear, which moving it drops");
         if (node.mesh >= 0) addMesh(node.mesh, world);
         if (node.camera >= 0) addCamera(node, world);
         auto lit = node.extensions.find("KHR_lights_punctual");
@@ -348,7 +393,7 @@ void GltfReader::traverse() {
             if (d >= 0.0 && d < double(model_.lights.size())) addLight(node, int(d), world);
             else warn("node '" + node.name + "': KHR_lights_punctual light index out of range");
         }
-        for (auto c = node.children.rbegin(); c != node.children.rend(); ++c) stack.emplace_back(*c, world);
+        for (auto c = node.children.rbegin(); c != node.children.rend(); ++c) stack.push_back({*c, world, currentNode_});
     }
     if (skippedNonFinite_ > 0)
         warn("skipped " + std::to_string(skippedNonFinite_) + " triangle(s) with NaN/Inf vertex positions");

@@ -67,6 +67,8 @@ private:
     std::vector<int> textureMap_;  // glTF texture -> Scene::textures index, -1 unusable, -2 not resolved yet
     std::map<std::string, std::string> uriProblems_;  // URI -> why it was not read (escapes, FIFO, ...)
     uint64_t skippedNonFinite_ = 0;
+    int currentNode_ = -1;                    // the Scene node being placed (addMesh/addCamera/addLight tag with it)
+    std::vector<int> sceneNodeOf_;            // glTF node -> Scene node (-1: not in the scene)
     LoadBudget budget_;  // GltfLoadOptions::memoryBudget
     std::vector<uint32_t> meshInstances_;     // glTF mesh -> instances placed so far (for messages)
     bool quantized_ = false;                  // KHR_mesh_quantization: integer positions, normals, texcoords
@@ -125,6 +127,9 @@ private:
     // The UV set and KHR_texture_transform of a texture reference (an identity, set 0, when it has none).
     UvSet textureUv(const tinygltf::TextureInfo& info, const std::string& user);
     void loadMaterials();
+
+    // ---- animations (gltf_animation.cpp): node TRS channels; skins and morph targets warned about once each ----
+    void loadAnimations();
 
     // ---- cameras and lights (gltf_cameras_lights.cpp) ----
     void addCamera(const tinygltf::Node& node, const glm::mat4& world);

@@ -2,6 +2,7 @@
 
 #include "renderer/scene/scene_validation.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -15,7 +16,10 @@ glm::vec3 defaultSunDirection(const Settings& s) {
 
 std::vector<Light> effectiveLights(const Scene& scene, const Settings& s) {
     std::vector<Light> lights = scene.lights;
-    if (lights.empty()) {
+    const bool fileLights = !lights.empty();
+    if (fileLights)  // a light under a hidden node is off
+        lights.erase(std::remove_if(lights.begin(), lights.end(), [&](const Light& l) { return !scene.nodeVisible(l.node); }), lights.end());
+    if (!fileLights) {
         Light sun;
         sun.name = "default sun";
         sun.type = LightType::Directional;

@@ -393,8 +393,11 @@ Scene ObjReader::run() {
                 part.vertices.push_back(corner[k]);
             }
         }
+        int shapeNode = -1;  // one node per OBJ object, drawing its parts (one per material)
         for (auto& part : parts) {
             if (part.indices.empty()) continue;
+            if (shapeNode < 0) shapeNode = scene_.addNode(shapeName);
+            part.node = shapeNode;
             budget_.reserve(part.vertices.size() * sizeof(Vertex) + part.indices.size() * 4, "object '" + part.name + "'", true);
             part.vertices.shrink_to_fit();
             part.indices.shrink_to_fit();
@@ -404,6 +407,7 @@ Scene ObjReader::run() {
     if (skipped > 0) warn("skipped " + std::to_string(skipped) + " triangle(s) with NaN/Inf vertex positions");
     if (scene_.parts.empty()) warn("the file has no faces");
     validateScene(scene_);
+    scene_.ensureNodes();
     scene_.computeBounds();
     scene_.loadPeakBytes = budget_.peak();
     return std::move(scene_);

@@ -14,7 +14,9 @@ int addMaterial(Scene& s, const glm::vec3& albedo, const glm::vec3& emission, bo
     return int(s.materials.size()) - 1;
 }
 
-void addQuad(Scene& s, const glm::vec3& p0, const glm::vec3& p1, const glm::vec3& p2, const glm::vec3& p3, int material) {
+namespace {
+// One quad part drawn by `node` (its own new node when -1).
+void addQuadTo(Scene& s, const glm::vec3& p0, const glm::vec3& p1, const glm::vec3& p2, const glm::vec3& p3, int material, int node) {
     MeshPart part;
     part.name = "quad" + std::to_string(s.parts.size());
     part.material = material;
@@ -23,8 +25,16 @@ void addQuad(Scene& s, const glm::vec3& p0, const glm::vec3& p1, const glm::vec3
     const glm::vec2 uvs[4] = {{0, 1}, {1, 1}, {1, 0}, {0, 0}};
     for (int i = 0; i < 4; ++i) part.vertices.push_back({ps[i], n, uvs[i]});
     part.indices = {0, 1, 2, 0, 2, 3};
+    part.node = node >= 0 ? node : s.addNode(part.name);
+    part.restWorld = s.nodes[size_t(part.node)].world;
+    s.nodes[size_t(part.node)].parts.push_back(int(s.parts.size()));
     s.parts.push_back(std::move(part));
     s.computeBounds();
+}
+}  // namespace
+
+void addQuad(Scene& s, const glm::vec3& p0, const glm::vec3& p1, const glm::vec3& p2, const glm::vec3& p3, int material) {
+    addQuadTo(s, p0, p1, p2, p3, material, -1);
 }
 
 void addBox(Scene& s, const glm::vec3& lo, const glm::vec3& hi, int material, bool inward) {
@@ -38,9 +48,10 @@ void addBox(Scene& s, const glm::vec3& lo, const glm::vec3& hi, int material, bo
         {P(0, 0, 1), P(1, 0, 1), P(1, 1, 1), P(0, 1, 1)},  // +Z
         {P(1, 0, 0), P(0, 0, 0), P(0, 1, 0), P(1, 1, 0)},  // -Z
     };
+    const int node = s.addNode("box" + std::to_string(s.nodes.size()));  // one object: six quads
     for (const auto& f : q) {
-        if (inward) addQuad(s, f[3], f[2], f[1], f[0], material);
-        else addQuad(s, f[0], f[1], f[2], f[3], material);
+        if (inward) addQuadTo(s, f[3], f[2], f[1], f[0], material, node);
+        else addQuadTo(s, f[0], f[1], f[2], f[3], material, node);
     }
 }
 
@@ -55,6 +66,7 @@ void addSun(Scene& s, const glm::vec3& direction, float irradiance) {
     l.direction = glm::normalize(direction);
     l.intensity = irradiance;
     s.lights.push_back(l);
+    s.ensureNodes();  // a node that turns the sun
 }
 
 void addCamera(Scene& s, const std::string& name, const glm::vec3& eye, const glm::vec3& target, float yfovDeg) {
@@ -66,6 +78,7 @@ void addCamera(Scene& s, const std::string& name, const glm::vec3& eye, const gl
     const glm::vec3 up = std::abs(fwd.y) > 0.99f ? glm::vec3(0, 0, -1) : glm::vec3(0, 1, 0);
     c.cameraToWorld = glm::inverse(glm::lookAt(eye, target, up));
     s.cameras.push_back(c);
+    s.ensureNodes();
 }
 
 }  // namespace deepgi::procedural

@@ -1,7 +1,10 @@
 #pragma once
 // The CPU scene model shared by the GL renderer and the reference path tracer.
-// Static scenes: the glTF node hierarchy is flattened at load time, so every vertex is in world space.
+// Vertices stay as loaded (world space of the rest pose, the file's node transforms applied once); the node tree
+// is kept, and each part is drawn and traced with its current model matrix partModel() = node world * inverse(rest).
 #include <glm/glm.hpp>
+#include <glm/gtc/quaternion.hpp>
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -53,7 +56,7 @@ struct Material {
 };
 
 struct Vertex {
-    glm::vec3 position;  // world space
+    glm::vec3 position;  // world space of the rest pose (partModel() moves it)
     glm::vec3 normal;    // world space, unit length (flat normals generated where the file has none)
     glm::vec2 uv;        // TEXCOORD_0, (0,0) where missing
 };
@@ -64,6 +67,27 @@ struct MeshPart {
     std::vector<Vertex> vertices;
     std::vector<uint32_t> indices;  // 3 per triangle, counter-clockwise front faces
     int material = -1;              // index into Scene::materials; -1 = the default material (white, opaque)
+    int node = -1;                  // index into Scene::nodes (-1: a scene built in code without nodes: never moves)
+    glm::mat4 restWorld{1.0f};      // the node's world matrix the vertices were placed with
+};
+
+// A node's local transform, glTF's TRS (a file's matrix is decomposed at load).
+struct Transform {
+    glm::vec3 translation{0.0f};
+    glm::quat rotation{1.0f, 0.0f, 0.0f, 0.0f};  // w, x, y, z; unit
+    glm::vec3 scale{1.0f};
+    glm::mat4 matrix() const;  // T * R * S
+};
+
+struct SceneNode {
+    std::string name;                 // glTF node name ("node[i]" when unnamed)
+    int parent = -1;
+    std::vector<int> children;
+    Transform local;                  // editable
+    glm::mat4 world{1.0f};            // derived: Scene::updateWorldTransforms()
+    std::vector<int> parts;           // MeshPart indices drawn by this node (derived from MeshPart::node)
+    int light = -1, camera = -1;      // indices into Scene::lights / cameras (derived from their node)
+    bool visible = true;              // hidden (or under a hidden node): not drawn, not traced, casts nothing, lights nothing
 };
 
 enum class LightType : uint8_t { Directional, Point, Spot };
@@ -80,6 +104,7 @@ struct Light {
     float range = 0.0f;                    // 0 = infinite
     float innerConeAngle = 0.0f;           // radians (spot)
     float outerConeAngle = 0.7853982f;     // radians (spot)
+    int node = -1;                         // the node that places it (-1: fixed, e.g. a light built in code)
 };
 
 struct CameraDesc {
@@ -91,6 +116,24 @@ struct CameraDesc {
     float zfar = 0.0f;         // 0 = infinite (glTF) -> the renderer picks a far plane from the scene bounds
     float xmag = 1.0f, ymag = 1.0f;  // orthographic half extents
     glm::mat4 cameraToWorld{1.0f};   // looks down -Z, +Y up (glTF convention)
+    int node = -1;                   // the node that places it
+};
+
+// glTF animation of node TRS (renderer/scene/animation.h samples it).
+enum class AnimationPath : uint8_t { Translation, Rotation, Scale };
+enum class Interpolation : uint8_t { Linear, Step, CubicSpline };
+struct AnimationChannel {
+    int node = -1;  // index into Scene::nodes
+    AnimationPath path = AnimationPath::Translation;
+    Interpolation interpolation = Interpolation::Linear;
+    std::vector<float> times;   // seconds, increasing
+    // Per key: 3 floats (translation, scale) or 4 (rotation quaternion x, y, z, w); CUBICSPLINE: in-tangent, value,
+    // out-tangent per key (glTF's order).
+    std::vector<float> values;
+};
+struct Animation {
+    std::string name;
+    std::vector<AnimationChannel> channels;
 };
 
 struct Scene {
@@ -102,7 +145,10 @@ struct Scene {
     std::vector<Light> lights;  // empty: the renderer adds the default sun from its settings
     std::vector<CameraDesc> cameras;
     std::vector<std::string> warnings;
-    Aabb bounds;
+    std::vector<SceneNode> nodes;  // the tree: parents before children is not required
+    std::vector<int> roots;        // nodes without a parent, in file order
+    std::vector<Animation> animations;
+    Aabb bounds;                   // of the vertices as loaded (rest pose): the scene's size for lengths
     uint64_t loadPeakBytes = 0;  // most memory the loader held at once (its own count, see GltfLoadOptions)
 
     size_t triangleCount() const {
@@ -130,6 +176,36 @@ struct Scene {
             for (const auto& v : p.vertices)
                 if (std::isfinite(v.position.x) && std::isfinite(v.position.y) && std::isfinite(v.position.z)) bounds.extend(v.position);
     }
+    // ---- The node tree (scene_graph.cpp) ----
+    // Recomputes every node's world matrix from the local transforms, then each light's position and direction and
+    // each camera's cameraToWorld from its node. Call after editing Transform::local.
+    void updateWorldTransforms();
+    // The world matrices alone (lights and cameras untouched): what the loaders call once.
+    void computeNodeWorlds();
+    // Current model matrix of a part's vertices: identity (exactly) while its node is where it was at load.
+    glm::mat4 partModel(int part) const;
+    // World bounds of a node's parts (and its children's) now; a node without parts: its origin.
+    Aabb nodeBounds(int node) const;
+    // Bounds of every visible part now (the shadow box of the sun follows moved objects).
+    Aabb currentBounds() const;
+    // The node and all its ancestors are visible (-1: visible).
+    bool nodeVisible(int node) const;
+    bool partVisible(int part) const { return part >= 0 && part < int(parts.size()) && nodeVisible(parts[size_t(part)].node); }
+    // Rebuilds nodes' children / parts / light / camera lists and roots from the parent and node fields.
+    void linkNodes();
+    // Gives every part, light and camera without a node its own root node (OBJ, built-in scenes), sets each
+    // part's restWorld to its node's world, and links the tree.
+    void ensureNodes();
+    int addNode(const std::string& name, int parent = -1, const Transform& local = {});
+    // The last key time of every animation (0 without animations).
+    float animationDuration() const {
+        float d = 0.0f;
+        for (const auto& a : animations)
+            for (const auto& c : a.channels)
+                if (!c.times.empty()) d = std::max(d, c.times.back());
+        return d;
+    }
+
     const Material& material(int i) const {
         static const Material kDefault{};
         return (i >= 0 && i < (int)materials.size()) ? materials[i] : kDefault;

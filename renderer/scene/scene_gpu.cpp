@@ -18,15 +18,19 @@ static GLint glWrap(WrapMode w) {
 SceneGpu::SceneGpu(const Scene& scene) : materials_(scene.materials) {
     std::vector<Vertex> vertices;
     std::vector<uint32_t> indices;
+    std::vector<uint32_t> objectOfVertex;  // part index per vertex (attribute 7)
     // Group parts by material so each material is one draw of consecutive indices.
     std::map<int, std::vector<const MeshPart*>> byMaterial;
     for (const auto& p : scene.parts)
         if (!p.indices.empty()) byMaterial[p.material].push_back(&p);
     for (const auto& [mat, parts] : byMaterial) {
-        Batch b{mat, uint32_t(indices.size()), 0, 0};
+        Batch b{mat, uint32_t(indices.size()), 0, 0, {}};
         for (const MeshPart* p : parts) {
             const uint32_t base = uint32_t(vertices.size());
+            const int partIndex = int(p - scene.parts.data());
+            b.parts.push_back({uint32_t(indices.size()), uint32_t(p->indices.size()), partIndex});
             vertices.insert(vertices.end(), p->vertices.begin(), p->vertices.end());
+            objectOfVertex.insert(objectOfVertex.end(), p->vertices.size(), uint32_t(partIndex));
             for (uint32_t i : p->indices) indices.push_back(base + i);
         }
         b.indexCount = uint32_t(indices.size()) - b.firstIndex;
@@ -51,6 +55,17 @@ SceneGpu::SceneGpu(const Scene& scene) : materials_(scene.materials) {
         glVertexArrayAttribFormat(v, a, sizes[a], GL_FLOAT, GL_FALSE, offsets[a]);
         glVertexArrayAttribBinding(v, a, 0);
     }
+    // Per-vertex part index, a buffer of its own (binding 1) beside the vertices.
+    objectIds_ = gl::createBuffer("scene vertex objects");
+    if (!objectOfVertex.empty()) glNamedBufferStorage(objectIds_.id(), objectOfVertex.size() * sizeof(uint32_t), objectOfVertex.data(), 0);
+    glVertexArrayVertexBuffer(v, 1, objectIds_.id(), 0, sizeof(uint32_t));
+    glEnableVertexArrayAttrib(v, kObjectAttribute);
+    glVertexArrayAttribIFormat(v, kObjectAttribute, 1, GL_UNSIGNED_INT, 0);
+    glVertexArrayAttribBinding(v, kObjectAttribute, 1);
+    objectSsbo_ = gl::createBuffer("scene objects");
+    updateObjects(scene);
+    lastFrame_ = current_;
+
     // Textures: sRGB colour with trilinear mipmaps.
     for (const auto& t : scene.textures) {
         if (t.image < 0 || t.image >= (int)scene.images.size() || scene.images[t.image].rgba8.empty()) {
@@ -94,10 +109,91 @@ void SceneGpu::draw(GLuint program, bool masked, bool cullBackFaces) const {
         glBindTextureUnit(1, emTex);
         if (cullBackFaces && !m.doubleSided) glEnable(GL_CULL_FACE);
         else glDisable(GL_CULL_FACE);
-        glDrawElements(GL_TRIANGLES, GLsizei(b.indexCount), GL_UNSIGNED_INT,
-                       reinterpret_cast<const void*>(uintptr_t(b.firstIndex) * sizeof(uint32_t)));
+        drawBatch(b);
     }
     glDisable(GL_CULL_FACE);
+}
+
+// ---- Objects: model matrices and visibility ----
+
+namespace {
+// std430 mirror of SceneObject in shaders/scene_objects.glsl.
+struct SceneObjectStd430 {
+    glm::mat4 model, prevModel;
+    glm::mat4 normalMatrix;  // inverse transpose of the upper 3x3, in the first three columns
+    glm::uvec4 id;           // x = node index + 1 (0 = none)
+};
+}  // namespace
+
+void SceneGpu::drawBatch(const Batch& b) const {
+    if (allVisible_) {
+        glDrawElements(GL_TRIANGLES, GLsizei(b.indexCount), GL_UNSIGNED_INT,
+                       reinterpret_cast<const void*>(uintptr_t(b.firstIndex) * sizeof(uint32_t)));
+        return;
+    }
+    // Visible parts only, consecutive ones merged into one range.
+    std::vector<GLsizei> counts;
+    std::vector<const void*> offsets;
+    uint32_t start = 0, count = 0;
+    auto flush = [&] {
+        if (count == 0) return;
+        counts.push_back(GLsizei(count));
+        offsets.push_back(reinterpret_cast<const void*>(uintptr_t(start) * sizeof(uint32_t)));
+        count = 0;
+    };
+    for (const Range& r : b.parts) {
+        if (!visible_[size_t(r.part)]) { flush(); continue; }
+        if (count == 0) start = r.firstIndex;
+        count += r.indexCount;
+    }
+    flush();
+    if (!counts.empty()) glMultiDrawElements(GL_TRIANGLES, counts.data(), GL_UNSIGNED_INT, offsets.data(), GLsizei(counts.size()));
+}
+
+void SceneGpu::updateObjects(const Scene& scene) {
+    const size_t n = scene.parts.size();
+    std::vector<glm::mat4> models(n);
+    std::vector<char> visible(n);
+    for (size_t i = 0; i < n; ++i) {
+        models[i] = scene.partModel(int(i));
+        visible[i] = scene.partVisible(int(i));
+    }
+    if (models != current_ || visible != visible_) ++version_;
+    current_ = std::move(models);
+    visible_ = std::move(visible);
+    allVisible_ = std::find(visible_.begin(), visible_.end(), 0) == visible_.end();
+    if (lastFrame_.size() != n) lastFrame_ = current_;
+    nodeOfPart_.resize(n);
+    for (size_t i = 0; i < n; ++i) nodeOfPart_[i] = scene.parts[i].node;
+    objectsDirty_ = true;
+}
+
+void SceneGpu::beginFrame(bool historyValid) {
+    const std::vector<glm::mat4>& prev = historyValid ? lastFrame_ : current_;
+    if (objectsDirty_ || prev != uploadedPrev_) {
+        std::vector<SceneObjectStd430> objs(std::max<size_t>(current_.size(), 1));
+        for (size_t i = 0; i < current_.size(); ++i) {
+            SceneObjectStd430& o = objs[i];
+            o.model = current_[i];
+            o.prevModel = prev[i];
+            const glm::mat3 m3(current_[i]);
+            // Cofactor matrix (inverse transpose up to a positive scale, sign-corrected): finite for singular scales.
+            glm::mat3 nm(glm::cross(m3[1], m3[2]), glm::cross(m3[2], m3[0]), glm::cross(m3[0], m3[1]));
+            if (glm::determinant(m3) < 0.0f) nm = -nm;
+            o.normalMatrix = glm::mat4(nm);
+            o.id = glm::uvec4(uint32_t(nodeOfPart_[i] + 1), 0u, 0u, 0u);
+        }
+        const GLsizeiptr bytes = GLsizeiptr(objs.size() * sizeof(SceneObjectStd430));
+        if (bytes != objectBytes_) {
+            glNamedBufferData(objectSsbo_.id(), bytes, objs.data(), GL_DYNAMIC_DRAW);
+            objectBytes_ = bytes;
+        } else {
+            glNamedBufferSubData(objectSsbo_.id(), 0, bytes, objs.data());
+        }
+        uploadedPrev_ = prev;
+        objectsDirty_ = false;
+    }
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kObjectBinding, objectSsbo_.id());
 }
 
 }  // namespace deepgi

@@ -1,5 +1,7 @@
 #pragma once
-// The scene's geometry, materials and textures on the GPU, drawn in batches grouped by material.
+// The scene's geometry, materials and textures on the GPU, drawn in batches grouped by material. Vertices stay as
+// loaded; each carries its part's index (attribute 7), which selects the part's current and previous model
+// matrices in the object buffer (shaders/scene_objects.glsl, SSBO binding 5). Hidden parts are left out of the draws.
 #include "renderer/gl/gl.h"
 #include "renderer/scene/scene.h"
 
@@ -21,12 +23,34 @@ public:
     bool hasOpaque() const { return hasOpaque_; }
     bool empty() const { return batches_.empty(); }
 
+    // Reads every part's current model matrix and visibility from the scene (after an edit).
+    void updateObjects(const Scene& scene);
+    // Before a frame's passes: uploads {current, previous} matrices (previous = the last frame's, or the current
+    // ones without history) and binds the object buffer at 5.
+    void beginFrame(bool historyValid);
+    // After a frame: its matrices become the previous ones.
+    void endFrame() { lastFrame_ = current_; }
+    // Changes whenever a part moved or its visibility changed (the shadow maps' key).
+    uint64_t version() const { return version_; }
+    static constexpr GLuint kObjectBinding = 5;
+    static constexpr GLuint kObjectAttribute = 7;
+
 private:
+    struct Range { uint32_t firstIndex, indexCount; int part; };
     struct Batch {
         int material;
         uint32_t firstIndex, indexCount;
         int32_t baseVertex;
+        std::vector<Range> parts;  // consecutive sub-ranges, one per part
     };
+    void drawBatch(const Batch& b) const;
+    std::vector<glm::mat4> current_, lastFrame_, uploadedPrev_;
+    std::vector<char> visible_;
+    bool allVisible_ = true, objectsDirty_ = true;
+    uint64_t version_ = 1;
+    std::vector<int> nodeOfPart_;
+    GLsizeiptr objectBytes_ = 0;
+    gl::BufferHandle objectIds_, objectSsbo_;
     std::vector<Batch> batches_;
     std::vector<Material> materials_;
     std::vector<gl::TextureHandle> textures_;  // one per Scene::textures entry (0 = failed/absent)
