@@ -1,7 +1,12 @@
 // The viewer's editing without a window: Blender's modal transform tool (G / R / S, constraints, typed values,
-// cancel) against analytic answers, and the undo history.
+// cancel) against analytic answers, the undo history, and the scene's edit state (selection, capture / apply,
+// Euler angles, the default sun's angles, light icons). One file over 500 lines: they share the view and helpers.
+#include "app/edit/scene_edit.h"
 #include "app/edit/transform_tool.h"
 #include "app/edit/undo_history.h"
+
+#include "renderer/renderer.h"
+#include "renderer/scene/lighting.h"
 
 #include <glm/gtc/matrix_transform.hpp>
 #include <gtest/gtest.h>
@@ -337,4 +342,131 @@ TEST(ViewerUndo, KeepsTheNewestSteps) {
     EXPECT_EQ(*h.undo(), 3);
     EXPECT_EQ(*h.undo(), 2);
     EXPECT_EQ(h.undo(), nullptr) << "the oldest steps were dropped";
+}
+
+// ---- the scene's edit state ----------------------------------------------------------------------------------
+
+namespace {
+// root (a light below it) -> child; and a second root with a part.
+Scene smallTree() {
+    Scene s;
+    const int root = s.addNode("root");
+    s.addNode("child", root);
+    const int lamp = s.addNode("lamp", root);
+    const int other = s.addNode("other");
+    Light l;
+    l.type = LightType::Point;
+    l.node = lamp;
+    s.lights.push_back(l);
+    MeshPart p;
+    p.node = other;
+    p.vertices = {{{0, 0, 0}, {0, 0, 1}, {0, 0}}, {{1, 0, 0}, {0, 0, 1}, {0, 0}}, {{0, 1, 0}, {0, 0, 1}, {0, 0}}};
+    p.indices = {0, 1, 2};
+    s.parts.push_back(p);
+    s.ensureNodes();
+    s.computeBounds();
+    s.updateWorldTransforms();
+    return s;
+}
+}  // namespace
+
+TEST(ViewerSceneEdit, ShiftClickFollowsBlender) {
+    Selection s;
+    s.click(3, false);
+    EXPECT_EQ(s.items, std::vector<int>({3}));
+    s.click(5, true);  // added, active
+    EXPECT_EQ(s.items, std::vector<int>({3, 5}));
+    EXPECT_EQ(s.active, 5);
+    s.click(3, true);  // selected, not active: becomes active
+    EXPECT_EQ(s.items.size(), 2u);
+    EXPECT_EQ(s.active, 3);
+    s.click(3, true);  // the active one: deselected
+    EXPECT_EQ(s.items, std::vector<int>({5}));
+    EXPECT_EQ(s.active, -1);
+    s.click(-1, true);  // Shift-click on nothing keeps it
+    EXPECT_EQ(s.items, std::vector<int>({5}));
+    s.click(-1, false);  // a click on nothing deselects
+    EXPECT_TRUE(s.items.empty());
+}
+
+TEST(ViewerSceneEdit, CaptureAndApplyRestoreExactlyWithTheRightChanges) {
+    Scene scene = smallTree();
+    Settings settings;
+    Selection sel;
+    const EditState before = captureState(scene, settings, sel);
+    scene.nodes[0].local.translation = {1, 2, 3};
+    scene.nodes[3].visible = false;
+    scene.lights[0].intensity = 7.0f;
+    sel.click(3, false);
+    scene.updateWorldTransforms();
+    const EditState after = captureState(scene, settings, sel);
+    EXPECT_FALSE(before == after);
+    const unsigned changes = applyState(scene, settings, sel, before);
+    EXPECT_TRUE(captureState(scene, settings, sel) == before);
+    EXPECT_EQ(changes, unsigned(SceneChange::Transforms) | unsigned(SceneChange::Visibility) | unsigned(SceneChange::Lights));
+    EXPECT_EQ(glm::vec3(scene.nodes[0].world[3]), glm::vec3(0.0f)) << "world transforms recomputed";
+    // Only the selection: nothing for the renderer.
+    EditState selOnly = before;
+    selOnly.selection.click(1, false);
+    EXPECT_EQ(applyState(scene, settings, sel, selOnly), 0u);
+    EXPECT_EQ(sel.items, std::vector<int>({1}));
+}
+
+TEST(ViewerSceneEdit, ChildrenMoveWithTheirParentOnceAndLightsFollow) {
+    Scene scene = smallTree();
+    Selection sel;
+    sel.items = {1, 0, 3};  // child, its parent, another root
+    EXPECT_EQ(transformRoots(scene, sel), std::vector<int>({0, 3}));
+    const std::vector<int> roots = {0};
+    Trs moved;
+    moved.translation = {0, 5, 0};
+    EXPECT_EQ(setLocals(scene, roots, {moved}), unsigned(SceneChange::Transforms) | unsigned(SceneChange::Lights))
+        << "the lamp is below the moved root";
+    EXPECT_NEAR(scene.lights[0].position.y, 5.0f, 1e-6f);
+    EXPECT_EQ(setLocals(scene, {3}, {moved}), unsigned(SceneChange::Transforms)) << "no light below 'other'";
+    EXPECT_EQ(setVisible(scene, 3, false), unsigned(SceneChange::Visibility));
+    EXPECT_EQ(setVisible(scene, 3, false), 0u) << "already hidden";
+    EXPECT_EQ(setVisible(scene, 0, false), unsigned(SceneChange::Visibility) | unsigned(SceneChange::Lights));
+}
+
+TEST(ViewerSceneEdit, EulerDegreesRoundTrip) {
+    for (const glm::vec3 e : {glm::vec3(30, -20, 75), glm::vec3(0, 0, 90), glm::vec3(-170, 10, 5), glm::vec3(0, 89, 0)}) {
+        const glm::quat q = fromEulerDegrees(e);
+        expectVec(eulerDegrees(q), e, 1e-3f);
+    }
+    // Blender's XYZ order: X first, then Y, then Z (R = Rz Ry Rx).
+    const glm::quat q = fromEulerDegrees({90, 0, 90});
+    expectVec(q * glm::vec3(0, 1, 0), glm::vec3(0, 0, 1) /* X turns +Y to +Z; Z keeps +Z */);
+}
+
+TEST(ViewerSceneEdit, SunAnglesInvertTheRenderersSunDirection) {
+    Settings s;
+    for (float az : {0.0f, 30.0f, 135.0f, 300.0f})
+        for (float el : {5.0f, 45.0f, 80.0f}) {
+            s.sunAzimuth = az;
+            s.sunElevation = el;
+            const glm::vec2 back = sunAngles(defaultSunDirection(s));
+            EXPECT_NEAR(back.x, az, 1e-3f);
+            EXPECT_NEAR(back.y, el, 1e-3f);
+        }
+    EXPECT_NEAR(sunAngles(glm::vec3(0, 1, 0)).y, 1.0f, 1e-6f) << "from below: the setting's lowest elevation";
+}
+
+TEST(ViewerSceneEdit, LightIconsProjectAndPick) {
+    Scene scene = smallTree();
+    scene.nodes[2].local.translation = {0, 0, 0};
+    scene.updateWorldTransforms();
+    Settings settings;
+    const ToolView v = frontView();
+    const auto icons = lightIcons(scene, settings, v);
+    ASSERT_EQ(icons.size(), 1u);
+    EXPECT_TRUE(icons[0].onScreen);
+    EXPECT_NEAR(icons[0].screen.x, kCentre.x, 1e-3f);
+    EXPECT_NEAR(icons[0].screen.y, kCentre.y, 1e-3f);
+    EXPECT_EQ(pickLight(icons, kCentre + glm::vec2(6, 0), 10.0f), 2);
+    EXPECT_EQ(pickLight(icons, kCentre + glm::vec2(16, 0), 10.0f), -1);
+    scene.lights.clear();  // the default sun
+    const auto sun = lightIcons(scene, settings, v);
+    ASSERT_EQ(sun.size(), 1u);
+    EXPECT_EQ(sun[0].item, kDefaultSun);
 }
