@@ -112,7 +112,9 @@ std::string typeKeys(const std::string& number) {
     return s;
 }
 
-const char* kStart = "key N\nwait 3\n";  // sidebar hidden: the viewport is the whole window below the header
+// Sidebar hidden: the viewport is the whole window below the header. Images are compared from y = 60 (below the
+// header and the info line, whose frame times differ) to 30 above the bottom (the status line).
+const char* kStart = "key N\nwait 3\n";
 
 
 // A copy of the Cornell box (the .bin beside it) with its sun replaced by `lights` (KHR_lights_punctual array) on
@@ -214,7 +216,7 @@ TEST_F(ViewerEdit, TypedMoveRotateScaleApplyTheExactAmount) {
     const json& ng = node(g, "blocks");
     for (int k = 0; k < 3; ++k)
         EXPECT_NEAR(ng["translation"][k].get<double>(), n0["translation"][k].get<double>() + (k == 0 ? 0.25 : 0.0), 1e-6) << k;
-    EXPECT_GT(meanAbsDiff(shot("a.png"), shot("g.png"), 0, 40, kW, kH - 30), 0.002) << "the blocks moved in the image";
+    EXPECT_GT(meanAbsDiff(shot("a.png"), shot("g.png"), 0, 60, kW, kH - 30), 0.002) << "the blocks moved in the image";
     // R Z 90 about the pivot (the blocks' origin): (cos 45, 0, 0, sin 45) when it had no rotation before.
     const json& nr = node(r, "blocks");
     const double h = std::sqrt(0.5);
@@ -252,7 +254,9 @@ TEST_F(ViewerEdit, CancelRestoresExactly) {
         EXPECT_EQ(node(*d, "blocks")["scale"], node(a, "blocks")["scale"]);
     }
     EXPECT_EQ(s.at("undo").at("steps"), a.at("undo").at("steps")) << "a cancelled transform is no undo step";
-    EXPECT_LT(meanAbsDiff(shot("a.png"), shot("b.png"), 0, 40, kW, kH - 30), 1e-3) << "and the image is the one before";
+    // The same image up to the still-frame noise tests/test_viewer.cpp allows (0.002): a scene change restarts
+    // the probes, whose new rays are other samples of the same lighting.
+    EXPECT_LT(meanAbsDiff(shot("a.png"), shot("b.png"), 0, 60, kW, kH - 30), 2e-3) << "and the image is the one before";
 }
 
 // Ctrl+Z undoes the move and the rotation (exactly), Shift+Ctrl+Z redoes them.
@@ -273,7 +277,7 @@ TEST_F(ViewerEdit, UndoAndRedoRestoreExactly) {
     EXPECT_EQ(node(u2, "blocks")["scale"], node(a, "blocks")["scale"]);
     EXPECT_EQ(node(redo, "blocks")["translation"], node(done, "blocks")["translation"]);
     EXPECT_EQ(node(redo, "blocks")["rotation"], node(done, "blocks")["rotation"]);
-    EXPECT_LT(meanAbsDiff(shot("a.png"), shot("u2.png"), 0, 40, kW, kH - 30), 1e-3) << "undo gives the image back";
+    EXPECT_LT(meanAbsDiff(shot("a.png"), shot("u2.png"), 0, 60, kW, kH - 30), 2e-3) << "undo gives the image back (still-frame noise)";
 }
 
 // The outliner's eye hides the blocks: they leave the image (and the Object ID buffer); H / Alt+H too; undo.
@@ -293,10 +297,10 @@ TEST_F(ViewerEdit, HiddenObjectLeavesTheImage) {
     EXPECT_FALSE(node(hidden, "blocks").at("visible").get<bool>());
     EXPECT_FALSE(hidden.at("picks").contains("blocks")) << "no pixel of the blocks is left";
     const int x1 = int(vx1) - 2;
-    const double changed = meanAbsDiff(shot("a.png"), shot("hidden.png"), 0, 40, x1, kH - 30);
+    const double changed = meanAbsDiff(shot("a.png"), shot("hidden.png"), 0, 60, x1, kH - 30);
     EXPECT_GT(changed, 0.01) << "the blocks left the image";
     EXPECT_TRUE(node(back, "blocks").at("visible").get<bool>()) << "Ctrl+Z shows them again";
-    EXPECT_LT(meanAbsDiff(shot("a.png"), shot("back.png"), 0, 40, x1, kH - 30), 0.1 * changed);
+    EXPECT_LT(meanAbsDiff(shot("a.png"), shot("back.png"), 0, 60, x1, kH - 30), 0.1 * changed);
     EXPECT_FALSE(node(h, "blocks").at("visible").get<bool>()) << "H hides the selection";
     EXPECT_TRUE(node(alth, "blocks").at("visible").get<bool>()) << "Alt+H shows everything";
 }
@@ -365,7 +369,7 @@ TEST_F(ViewerEdit, DefaultSunTurnsOnTheSphere) {
     EXPECT_NEAR(az, 90.0, 3.0) << "towards +X";
     EXPECT_NEAR(el, std::acos(0.7) * 180.0 / M_PI, 3.0) << "70 % of the radius from the zenith";
     const double vx1 = a.at("viewport")[2].get<double>();
-    EXPECT_GT(meanAbsDiff(shot("a.png"), shot("b.png"), 0, 40, int(vx1) - 2, kH - 30), 0.003) << "the lighting changed";
+    EXPECT_GT(meanAbsDiff(shot("a.png"), shot("b.png"), 0, 60, int(vx1) - 2, kH - 30), 0.003) << "the lighting changed";
     EXPECT_EQ(c.at("sun").at("azimuth"), a.at("sun").at("azimuth")) << "Ctrl+Z: the sun as it was";
     EXPECT_EQ(c.at("sun").at("elevation"), a.at("sun").at("elevation"));
 }
