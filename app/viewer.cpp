@@ -43,6 +43,7 @@ Viewer::~Viewer() {
     views_[1].reset();
     pathTrace_.reset();  // joins the worker
     refTex_.reset();
+    outlineTex_.reset();
     ptTex_.reset();
     errTex_.reset();
     maskTex_.reset();
@@ -276,6 +277,7 @@ void Viewer::frame() {
     uiInput_ = uiInput_ || !uiDrag_.empty();
     handleInput();
     updateFly(dt);
+    advanceAnimation(dt);
 
     int fbw = 0, fbh = 0, ww = 0, wh = 0;
     glfwGetFramebufferSize(window_, &fbw, &fbh);
@@ -377,6 +379,7 @@ void Viewer::drawFrameUi(int fbw, int fbh) {
     applyScriptPointer();
     ImGui::NewFrame();
     routeScriptWheel();
+    routeScriptClick();
     drawUi();
     ImGui::Render();
 
@@ -406,7 +409,14 @@ void Viewer::drawUi() {
         useSceneCamera(view_.cameraChoice);
         view_.cameraChoice = -1;
     }
+    if (view_.saveRequested) {  // File > Save As
+        view_.saveRequested = false;
+        saveMessage_ = saveScene(view_.savePath);
+        view_.saveMessage = saveMessage_;
+        setStatus(saveMessage_);
+    }
     drawViewport();
+    drawTimeline();
 
     if (view_.sidebar) drawSidebar(inspX1_, wh);
     if (inspector_.open) {
@@ -445,6 +455,7 @@ void Viewer::drawSidebar(float x0, float height) {
     st.captureBuffers = &captureBuffers_;
     st.perspective = ctl_.perspective;
     st.yfov = ctl_.yfov;
+    st.itemTab = [this] { drawItemTab(); };
     const ui::SidebarActions a = ui::drawSidebar(m, st, x0, height);
 
     needRender_ = needRender_ || a.settings.resetHistory || a.settings.convergeFrames > 0 || !a.pipeline.showTexture.empty() ||

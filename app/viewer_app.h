@@ -4,11 +4,15 @@
 #ifdef DEEPGI_HAVE_UI
 #include "app/camera_controller.h"
 #include "app/dynamic_resolution.h"
+#include "app/edit/scene_edit.h"
+#include "app/edit/transform_tool.h"
+#include "app/edit/undo_history.h"
 #include "app/viewer_path_trace.h"
 #include "app/viewer.h"
 #include "renderer/core/image_io.h"
 #include "renderer/passes/buffer_view_pass.h"
 #include "renderer/renderer.h"
+#include "ui/scene_panel.h"
 #include "ui/script.h"
 #include "ui/viewer_ui.h"
 
@@ -48,7 +52,8 @@ public:
     bool scriptBusy() override { return !uiDrag_.empty(); }
     void scriptKey(int key, int mods) override;
     void scriptDrag(int button, glm::dvec2 from, glm::dvec2 to, int mods) override;
-    void scriptPointer(glm::dvec2 at, int button, bool down) override;
+    void scriptPointer(glm::dvec2 at, int button, bool down, int mods) override;
+    void scriptMouseMove(glm::dvec2 at) override;
     void scriptScroll(double notches, const glm::dvec2* at) override;
     void scriptSet(const std::string& assignment) override;
     void scriptShow(const std::string& buffer) override;
@@ -67,6 +72,9 @@ public:
     void scriptReload() override;
     void scriptConverge(int frames) override { convergePending_ += frames; }
     void scriptStats(const std::string& path) override;
+    void scriptDumpScene(const std::string& path) override;
+    void scriptSave(const std::string& path) override;
+    void scriptTimeline(const std::string& what) override;
 
     // One input event as GLFW delivered it (or the script made it): queued by the callbacks, handled in order at
     // the start of the next frame, before its render, so that every press of a frame counts.
@@ -115,6 +123,32 @@ private:
     std::string writeProfilerCsv(const std::string& path);  // "" or the error
     void showTexture(const std::string& textureOrLayer);     // the Pipeline panel's click
     FloatImage readSource(const std::string& name, int level);  // registry layer (decoded), reference or path trace
+    // Scene editing (viewer_edit.cpp).
+    edit::ToolView toolView() const;                   // the last frame's camera over the viewport (window units)
+    void beforeSceneEdit();                            // stops what reads the scene on another thread
+    void sceneEdited(unsigned changes);                // Renderer::sceneChanged, and render like a motion
+    void recordEdit(const std::string& label, const edit::EditState& before);  // one undo step (before -> now)
+    void undoRedo(bool redo);
+    void selectAt(double x, double y, bool extend);    // a click in the viewport (window units)
+    void selectAll(bool all);
+    void hideSelected(bool unhideAll);
+    void toggleVisible(int node);
+    bool beginTransform(edit::ToolMode mode);
+    void applyTransform();
+    void confirmTransform();
+    void cancelTransform();
+    bool editKey(int key, int mods);                   // true: the editor took the key
+    bool editButton(int button, int action, int mods, bool captured);
+    void editCursor();
+    void finishPanelEdit();
+    void drawItemTab();
+    void updateOutline();
+    void drawEditOverlay();
+    void advanceAnimation(double dt);
+    void applyAnimationNow();
+    void drawTimeline();
+    std::string saveScene(const std::string& path);    // File > Save As: its message
+    void routeScriptClick();                           // after ImGui's NewFrame: a click no window took is the viewport's
     std::vector<uint8_t> surfaceMask(const std::string& name, int level, bool* applies);  // 0 = empty texel
 
     ViewerOptions opt_;
@@ -222,6 +256,40 @@ private:
     int stillFrames_ = 0;              // rendered frames since anything the render reads changed
     uint64_t lastProbeUpdates_ = 0;
     bool converged_ = false;           // still long enough: frames draw the UI only
+    // Scene editing: selection, the transform tool, undo, the N panel's pending edit, the outline, the timeline.
+    edit::Selection selection_;
+    edit::TransformTool tool_;
+    std::vector<int> toolNodes_;       // the nodes the tool moves (the selection's roots); then the default sun
+    bool toolSun_ = false;
+    edit::EditState toolBefore_;
+    edit::UndoHistory<edit::EditState> history_{64};
+    std::string lastEditLabel_;
+    bool panelEditPending_ = false;    // an N panel drag in progress: one undo step when it ends
+    std::string panelEditLabel_;
+    edit::EditState panelEditBefore_;
+    ui::ScenePanelState scenePanel_;
+    int eulerNode_ = -1;
+    glm::quat eulerQuat_{1.0f, 0.0f, 0.0f, 0.0f};
+    glm::vec3 eulerShown_{0.0f};
+    struct OutlineKey {
+        uint64_t frame = 0;
+        std::vector<int> items;
+        int active = -1;
+        bool operator==(const OutlineKey& o) const { return frame == o.frame && items == o.items && active == o.active; }
+    };
+    OutlineKey outlineKey_;
+    gl::TextureHandle outlineTex_;
+    int outlineW_ = 0, outlineH_ = 0;
+    size_t outlinePixels_ = 0;
+    bool playing_ = false;
+    float animTime_ = 0.0f;
+    std::string saveMessage_;
+    struct PendingClick {
+        bool pending = false;
+        glm::dvec2 at{0.0};
+        int button = 0, action = 0, mods = 0;
+    };
+    std::deque<PendingClick> scriptClicks_;
 };
 
 double nowSeconds();

@@ -54,6 +54,7 @@ void Viewer::onMouseButton(int button, int action, int mods, bool fromScript) {
         }
         return;
     }
+    if (editButton(button, action, mods, captured)) return;  // selection, confirming or cancelling a transform
     if (action == GLFW_RELEASE) {
         if (button == GLFW_MOUSE_BUTTON_MIDDLE || button == GLFW_MOUSE_BUTTON_LEFT) drag_ = Drag::None;
         return;
@@ -70,6 +71,10 @@ void Viewer::onCursor(double x, double y, bool fromScript) {
     lastY_ = y;
     if (view_.flyMode) {
         ctl_.look(float(dx), float(dy));
+        return;
+    }
+    if (tool_.active()) {  // G / R / S follow the pointer
+        editCursor();
         return;
     }
     switch (drag_) {
@@ -106,6 +111,7 @@ void Viewer::onKey(int key, int action, int mods, bool fromScript) {
         if (!view_.flyMode) glfwSetInputMode(window_, GLFW_CURSOR, GLFW_CURSOR_NORMAL);
         return;
     }
+    if (editKey(key, mods)) return;  // G / R / S and their modal keys, A / Alt+A, H / Alt+H, Ctrl+Z / Shift+Ctrl+Z
     const char* proj = ctl_.perspective ? " Perspective" : " Orthographic";
     using AV = CameraController::AxisView;
     switch (key) {

@@ -33,7 +33,8 @@ void Viewer::scriptDrag(int button, glm::dvec2 from, glm::dvec2 to, int mods) {
     queueInput({K::Button, button, GLFW_RELEASE, mods, 0.0, 0.0, true});
 }
 
-void Viewer::scriptPointer(glm::dvec2 at, int button, bool down) {
+void Viewer::scriptPointer(glm::dvec2 at, int button, bool down, int mods) {
+    if (button >= 0) scriptClicks_.push_back({true, at, button, down ? GLFW_PRESS : GLFW_RELEASE, mods});  // see routeScriptClick
     uiInput_ = true;  // the script's pointer is the UI's (a click on the viewport starts no drag)
     scriptPointerSet_ = true;
     scriptPointerAt_ = at;

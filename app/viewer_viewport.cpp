@@ -125,6 +125,7 @@ void Viewer::drawViewport() {
     }
     if (!view_.status.empty() && nowSeconds() - statusTime_ < 8.0)
         shadowed(vpX0_ + 8, vpY1_ - 22, IM_COL32(255, 230, 140, 255), view_.status);
+    drawEditOverlay();  // the selection's outline, the light icons, the transform's header
 }
 
 }  // namespace deepgi

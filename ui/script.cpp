@@ -53,7 +53,9 @@ int glfwKeyFromName(const std::string& rawName) {
         {"HOME", GLFW_KEY_HOME}, {"END", GLFW_KEY_END}, {"ESCAPE", GLFW_KEY_ESCAPE}, {"ESC", GLFW_KEY_ESCAPE},
         {"ENTER", GLFW_KEY_ENTER}, {"SPACE", GLFW_KEY_SPACE}, {"TAB", GLFW_KEY_TAB}, {"GRAVE_ACCENT", GLFW_KEY_GRAVE_ACCENT},
         {"GRAVE", GLFW_KEY_GRAVE_ACCENT}, {"KP_DECIMAL", GLFW_KEY_KP_DECIMAL}, {"KP_ADD", GLFW_KEY_KP_ADD},
-        {"KP_SUBTRACT", GLFW_KEY_KP_SUBTRACT}, {"PERIOD", GLFW_KEY_PERIOD}};
+        {"KP_SUBTRACT", GLFW_KEY_KP_SUBTRACT}, {"PERIOD", GLFW_KEY_PERIOD}, {"BACKSPACE", GLFW_KEY_BACKSPACE},
+        {"MINUS", GLFW_KEY_MINUS}, {"SLASH", GLFW_KEY_SLASH}, {"KP_ENTER", GLFW_KEY_KP_ENTER}, {"DELETE", GLFW_KEY_DELETE},
+        {"KP_DIVIDE", GLFW_KEY_KP_DIVIDE}};
     auto it = named.find(n);
     return it == named.end() ? -1 : it->second;
 }
@@ -62,11 +64,12 @@ std::vector<ScriptAction> parseViewerScript(const std::string& path) {
     std::ifstream in(path);
     if (!in) throw std::runtime_error("cannot read script " + path);
     static const std::map<std::string, std::pair<int, int>> arity = {
-        {"wait", {1, 1}}, {"sleep", {1, 1}}, {"key", {1, 4}}, {"drag", {5, 8}}, {"hover", {2, 2}}, {"click", {2, 3}},
+        {"wait", {1, 1}}, {"sleep", {1, 1}}, {"key", {1, 4}}, {"drag", {5, 8}}, {"hover", {2, 2}}, {"click", {2, 6}}, {"mousemove", {2, 2}},
         {"scroll", {1, 3}}, {"set", {1, 1}}, {"show", {1, 1}}, {"inspect", {1, 2}}, {"compare", {1, 1}},
         {"reference", {1, 1}}, {"pathtrace", {1, 1}}, {"camera", {1, 1}}, {"screenshot", {1, 1}}, {"capture", {0, 0}},
         {"panel", {1, 1}}, {"resize", {1, 1}}, {"shell", {1, 1000}}, {"profiler_csv", {1, 1}}, {"dump_errors", {1, 1}},
-        {"dump_figures", {1, 1}}, {"reload", {0, 0}}, {"converge", {1, 1}}, {"stats", {1, 1}}, {"quit", {0, 0}}};
+        {"dump_figures", {1, 1}}, {"reload", {0, 0}}, {"converge", {1, 1}}, {"stats", {1, 1}}, {"quit", {0, 0}},
+        {"dump_scene", {1, 1}}, {"save", {1, 1}}, {"timeline", {1, 1}}};
     std::vector<ScriptAction> actions;
     std::string line;
     int lineNo = 0;
@@ -90,8 +93,12 @@ std::vector<ScriptAction> parseViewerScript(const std::string& path) {
         if (a.verb == "key" && glfwKeyFromName(a.args[0]) < 0) throw std::runtime_error(where + "unknown key '" + a.args[0] + "'");
         if (a.verb == "drag" && a.args[0] != "left" && a.args[0] != "middle" && a.args[0] != "right")
             throw std::runtime_error(where + "drag button must be left, middle or right, got '" + a.args[0] + "'");
-        if (a.verb == "click" && a.args.size() == 3 && a.args[2] != "left" && a.args[2] != "middle" && a.args[2] != "right")
-            throw std::runtime_error(where + "click button must be left, middle or right, got '" + a.args[2] + "'");
+        if (a.verb == "click")
+            for (size_t i = 2; i < a.args.size(); ++i)
+                if (a.args[i] != "left" && a.args[i] != "middle" && a.args[i] != "right" && a.args[i] != "shift" &&
+                    a.args[i] != "ctrl" && a.args[i] != "alt")
+                    throw std::runtime_error(where + "click takes a button (left, middle, right) and modifiers (shift, ctrl, alt), got '" +
+                                             a.args[i] + "'");
         if (a.verb == "scroll" && a.args.size() == 2)
             throw std::runtime_error(where + "scroll takes N, or N X Y (a position needs both coordinates)");
         // Numbers are checked here, so that a typo fails before the window opens, with its line.
@@ -107,7 +114,13 @@ std::vector<ScriptAction> parseViewerScript(const std::string& path) {
         if (a.verb == "wait" || a.verb == "converge") number(0, true, a.verb == "wait" ? 0 : 1);
         if (a.verb == "sleep") number(0, false, 0);
         if (a.verb == "scroll") for (size_t i = 0; i < a.args.size(); ++i) number(i, false, any);
-        if (a.verb == "hover" || a.verb == "click") { number(0, false, any); number(1, false, any); }
+        if (a.verb == "hover" || a.verb == "click" || a.verb == "mousemove") { number(0, false, any); number(1, false, any); }
+        if (a.verb == "timeline" && a.args[0] != "play" && a.args[0] != "pause") {
+            char* end = nullptr;
+            const double t = std::strtod(a.args[0].c_str(), &end);
+            if (a.args[0].empty() || *end != '\0' || !std::isfinite(t) || t < 0.0)
+                throw std::runtime_error(where + "timeline takes play, pause or a time in seconds (>= 0), got '" + a.args[0] + "'");
+        }
         if (a.verb == "drag") for (size_t i = 1; i <= 4; ++i) number(i, false, any);
         if (a.verb == "key" || a.verb == "drag")
             for (size_t i = a.verb == "key" ? 1 : 5; i < a.args.size(); ++i)
@@ -119,8 +132,8 @@ std::vector<ScriptAction> parseViewerScript(const std::string& path) {
         if (a.verb == "pathtrace" && a.args[0] != "off" && a.args[0] != "full" && a.args[0] != "split")
             throw std::runtime_error(where + "pathtrace must be off, full or split, got '" + a.args[0] + "'");
         if (a.verb == "panel" && a.args[0] != "settings" && a.args[0] != "profiler" && a.args[0] != "view" &&
-            a.args[0] != "pipeline")
-            throw std::runtime_error(where + "panel must be settings, profiler, view or pipeline, got '" + a.args[0] + "'");
+            a.args[0] != "pipeline" && a.args[0] != "item")
+            throw std::runtime_error(where + "panel must be item, settings, profiler, view or pipeline, got '" + a.args[0] + "'");
         if (a.verb == "resize") {
             int w = 0, h = 0;
             char x = 0, extra = 0;
@@ -145,7 +158,7 @@ void ScriptRunner::fail(const std::string& why) {
 void ScriptRunner::step(ScriptHost& host, double now) {
     if (!active() || finished_) return;
     if (releasePending_) {  // the second frame of a click
-        host.scriptPointer(releaseAt_, releaseButton_, false);
+        host.scriptPointer(releaseAt_, releaseButton_, false, releaseMods_);
         releasePending_ = false;
         return;
     }
@@ -177,10 +190,14 @@ void ScriptRunner::step(ScriptHost& host, double now) {
             if (v == "key") host.scriptKey(glfwKeyFromName(a.args[0]), mods(1));
             else if (v == "drag") host.scriptDrag(button(a.args[0]), {num(1), num(2)}, {num(3), num(4)}, mods(5));
             else if (v == "hover") host.scriptPointer({num(0), num(1)}, -1, false);
+            else if (v == "mousemove") host.scriptMouseMove({num(0), num(1)});
             else if (v == "click") {
                 releaseAt_ = {num(0), num(1)};
-                releaseButton_ = button(a.args.size() > 2 ? a.args[2] : "left");
-                host.scriptPointer(releaseAt_, releaseButton_, true);
+                releaseButton_ = GLFW_MOUSE_BUTTON_LEFT;
+                for (size_t i = 2; i < a.args.size(); ++i)
+                    if (a.args[i] == "left" || a.args[i] == "middle" || a.args[i] == "right") releaseButton_ = button(a.args[i]);
+                releaseMods_ = mods(2);
+                host.scriptPointer(releaseAt_, releaseButton_, true, releaseMods_);
                 releasePending_ = true;
                 return;  // released on the next frame: the UI must see the button down for one frame
             } else if (v == "scroll") {
@@ -209,6 +226,9 @@ void ScriptRunner::step(ScriptHost& host, double now) {
             else if (v == "dump_figures") host.scriptDumpFigures(a.args[0]);
             else if (v == "reload") host.scriptReload();
             else if (v == "stats") host.scriptStats(a.args[0]);
+            else if (v == "dump_scene") host.scriptDumpScene(a.args[0]);
+            else if (v == "save") host.scriptSave(a.args[0]);
+            else if (v == "timeline") host.scriptTimeline(a.args[0]);
             else if (v == "converge") { host.scriptConverge(std::stoi(a.args[0])); return; }
             else if (v == "quit") { finished_ = true; return; }
         } catch (const std::exception& e) {

@@ -6,7 +6,9 @@
 //   drag BUTTON X0 Y0 X1 Y1 [shift] [ctrl] [alt]   BUTTON = left|middle|right, window coordinates; from the
 //                               viewport it navigates, from any window (the divider, a slider) the UI gets it
 //   hover X Y                   move the pointer there (over any window: tooltips, the inspector's readout)
-//   click X Y [left|middle|right]   press there this frame, release the next (any window: buttons, tabs, lists)
+//   click X Y [left|middle|right] [shift] [ctrl] [alt]   press there this frame, release the next (any window:
+//                               buttons, tabs, lists; over the viewport where no window is: select, confirm a transform)
+//   mousemove X Y               the pointer moves there (over the viewport: what G / R / S follow)
 //   scroll N [X Y]              wheel notches (> 0 up) at X Y (default: the viewport centre), given to the window
 //                               under that point: the inspector zooms, the viewport dollies
 //   set KEY=VALUE               change a setting (see `deepgi settings`)
@@ -17,7 +19,7 @@
 //   pathtrace off|full|split    "Path trace this view": off, the path tracer full-viewport, or split against the frame
 //   camera "NAME"               switch to a glTF camera
 //   screenshot PATH             PNG of the whole window (back buffer, before the swap) after this frame
-//   panel settings|profiler|view|pipeline   bring a sidebar tab to the front (shows the sidebar)
+//   panel item|settings|profiler|view|pipeline   bring a sidebar tab to the front (shows the sidebar)
 //   resize WxH                  resize the window (window units)
 //   capture                     what F12 does (final PNG, buffers if chosen, settings.json, camera.json)
 //   profiler_csv PATH           write the profiler's history as CSV (what its "Export CSV" button does)
@@ -28,6 +30,11 @@
 //   converge N                  render N frames at once (anywhere: before the first frame it runs after it)
 //   stats PATH                  write JSON: the recent frame times (ms), the render size and scale, the viewport and
 //                               window sizes, the target frame time, whether the camera is moving, the keys handled
+//   dump_scene PATH             write JSON: every node (name, local TRS, rotation in degrees, world position,
+//                               visibility), the lights, the selection, the transform tool, the undo steps, the
+//                               default sun's settings, the timeline, the last save's message, the outliner's rows
+//   save PATH                   what File > Save As does with that path (its message goes to dump_scene)
+//   timeline play|pause|SECONDS play, pause or scrub the scene's animation
 //   quit                        exit now (the end of the script also exits)
 // Every failure, when parsing or while running, names FILE:LINE and says why; the viewer then exits with 1.
 #include <glm/glm.hpp>
@@ -58,7 +65,8 @@ public:
     virtual void scriptKey(int glfwKey, int glfwMods) = 0;
     virtual void scriptDrag(int glfwButton, glm::dvec2 from, glm::dvec2 to, int glfwMods) = 0;
     // Pointer for this frame's UI (hover/click): position, and which buttons are down.
-    virtual void scriptPointer(glm::dvec2 at, int glfwButton, bool down) = 0;
+    virtual void scriptPointer(glm::dvec2 at, int glfwButton, bool down, int glfwMods = 0) = 0;
+    virtual void scriptMouseMove(glm::dvec2 at) = 0;
     virtual void scriptScroll(double notches, const glm::dvec2* at) = 0;
     virtual void scriptSet(const std::string& assignment) = 0;
     virtual void scriptShow(const std::string& buffer) = 0;
@@ -77,6 +85,9 @@ public:
     virtual void scriptReload() = 0;
     virtual void scriptConverge(int frames) = 0;
     virtual void scriptStats(const std::string& path) = 0;
+    virtual void scriptDumpScene(const std::string& path) = 0;
+    virtual void scriptSave(const std::string& path) = 0;
+    virtual void scriptTimeline(const std::string& what) = 0;  // "play", "pause" or seconds (checked by the parser)
 };
 
 // Runs a parsed script, a few actions per frame: `wait`, `sleep`, `screenshot` and `click` end a frame's turn.
@@ -100,7 +111,7 @@ private:
     int waitFrames_ = 0;
     double sleepUntil_ = 0.0;
     bool releasePending_ = false;
-    int releaseButton_ = 0;
+    int releaseButton_ = 0, releaseMods_ = 0;
     glm::dvec2 releaseAt_{0.0};
     int lastLine_ = 0;
     bool finished_ = false, failed_ = false;

@@ -51,7 +51,9 @@ void drawViewTab(const SidebarModel& m, SidebarState& st, SidebarActions& act) {
     ImGui::TextDisabled("Keys");
     ImGui::TextWrapped("MMB orbit, Shift+MMB pan, wheel/Ctrl+MMB zoom; Numpad 1/3/7 front/right/top (Ctrl: opposite), "
                        "5 persp/ortho, 0 camera; Home frame all; Shift+` fly; F5 reload shaders; F12 screenshot; "
-                       "N sidebar; I inspector.");
+                       "N sidebar; I inspector. Editing: click selects (Shift adds), A all, Alt+A none, G/R/S move/rotate/"
+                       "scale (X/Y/Z axis, Shift+X/Y/Z plane, again: local, typed values, Enter/click confirm, Esc/right-click "
+                       "cancel), H hide, Alt+H show all, Ctrl+Z undo, Shift+Ctrl+Z redo.");
 }
 
 }  // namespace
@@ -68,6 +70,10 @@ SidebarActions drawSidebar(const SidebarModel& m, SidebarState& st, float x0, fl
             return st.selectTab == name ? ImGuiTabItemFlags_SetSelected : ImGuiTabItemFlags_None;
         };
         if (ImGui::BeginTabBar("tabs")) {
+            if (st.itemTab && ImGui::BeginTabItem("Item", nullptr, tabFlags("item"))) {
+                st.itemTab();
+                ImGui::EndTabItem();
+            }
             if (ImGui::BeginTabItem("Settings", nullptr, tabFlags("settings"))) {
                 act.settings = drawSettingsPanel(*st.settings, *st.settingsPanel);
                 ImGui::EndTabItem();

@@ -11,6 +11,7 @@
 
 #include <cstdint>
 #include <deque>
+#include <functional>
 #include <map>
 #include <string>
 #include <vector>
@@ -141,6 +142,9 @@ struct ViewportState {
     float inspectorSplit = 0.5f;           // the viewport's share of the width left of the sidebar (inspector open)
     float pathTraceSplit = 0.5f;           // "Path trace this view", split: real time left of it, path traced right
     PathTraceMode pathTrace = PathTraceMode::Off;
+    char savePath[512] = "scene_edited.gltf";  // File > Save As
+    bool saveRequested = false;            // set by the header's Save button, cleared by the app
+    std::string saveMessage;               // the last save's result or error
 };
 
 // ---- layout ------------------------------------------------------------------------------------------------
@@ -179,6 +183,7 @@ struct SidebarState {
     bool perspective = true;  // the camera's projection and field of view, copied in and out by the app
     float yfov = 0.87f;
     std::string selectTab;    // tab to bring to the front this frame
+    std::function<void()> itemTab;  // draws the Item tab (outliner and N panel: the app owns the scene)
 };
 struct SidebarActions {
     SettingsActions settings;

@@ -19,6 +19,24 @@ float drawViewportHeader(ViewportState& v, ViewerServices& services, float x0, f
     ImGui::PushStyleVar(ImGuiStyleVar_WindowPadding, ImVec2(6.0f, 4.0f));
     float height = 0.0f;
     if (ImGui::Begin("##viewport header", nullptr, flags)) {
+        if (ImGui::Button("File")) ImGui::OpenPopup("file menu");
+        if (ImGui::BeginPopup("file menu")) {
+            ImGui::TextDisabled("Save As (glTF 2.0: .gltf with a .bin beside it, or .glb)");
+            ImGui::SetNextItemWidth(280.0f);
+            const bool enter = ImGui::InputText("##savepath", v.savePath, sizeof(v.savePath), ImGuiInputTextFlags_EnterReturnsTrue);
+            ImGui::SameLine();
+            if (ImGui::Button("Save") || enter) v.saveRequested = true;
+            if (!v.saveMessage.empty()) {
+                const bool failed = v.saveMessage.rfind("saved ", 0) != 0;
+                ImGui::PushStyleColor(ImGuiCol_Text, failed ? IM_COL32(255, 110, 110, 255) : IM_COL32(150, 230, 150, 255));
+                ImGui::PushTextWrapPos(ImGui::GetCursorPosX() + 360.0f);
+                ImGui::TextUnformatted(v.saveMessage.c_str());
+                ImGui::PopTextWrapPos();
+                ImGui::PopStyleColor();
+            }
+            ImGui::EndPopup();
+        }
+        ImGui::SameLine();
         ImGui::SetNextItemWidth(150.0f);
         if (ImGui::BeginCombo("##buffer", v.buffer.c_str(), ImGuiComboFlags_HeightLarge)) {
             for (const auto& name : services.bufferNames())
