@@ -3,6 +3,7 @@
 #include "app/options.h"
 #include "renderer/gl/headless_context.h"
 #include "renderer/renderer.h"
+#include "renderer/scene/scene_gpu.h"
 #include "renderer/scene/scene_loader.h"
 
 #include <algorithm>
@@ -40,10 +41,10 @@ CommandRegistrar registrar("buffers", "List every texture the renderer allocates
         std::printf("scratch:   %d bits per pixel (content lives inside one pass: the blur's and temporal blend's ping-pong), %llu bytes\n",
                     r.scratchBitsPerPixel, (unsigned long long)r.scratchBytes);
         std::printf("total:     %llu bytes (%.1f MiB)\n", (unsigned long long)r.totalBytes, r.totalBytes / 1048576.0);
-        // The scene on the GPU as SceneGpu uploads it: one vertex and index buffer, one SRGB8_ALPHA8 texture with
-        // its full mip chain per Scene::textures entry.
-        uint64_t geometryBytes = 0, textureBytes = 0;
-        for (const auto& p : scene->parts) geometryBytes += p.vertices.size() * sizeof(Vertex) + p.indices.size() * sizeof(uint32_t);
+        // The scene on the GPU as SceneGpu uploads it: its vertex, part-index, index and object buffers, one RGBA8
+        // texture with its full mip chain per Scene::textures entry.
+        const uint64_t geometryBytes = SceneGpu::geometryBytes(*scene);
+        uint64_t textureBytes = 0;
         for (const auto& t : scene->textures) {
             if (t.image < 0 || t.image >= int(scene->images.size())) continue;
             for (int w = scene->images[size_t(t.image)].width, h = scene->images[size_t(t.image)].height;; w = std::max(1, w / 2), h = std::max(1, h / 2)) {

@@ -226,7 +226,9 @@ TEST_F(GLTest, ExtremeSunIntensityStaysFiniteNeutralAndLinear) {
             FloatImage b = r.readLayer(name, name == "Input Radiance 2" ? s.minMip : 0);
             ASSERT_TRUE(allFinite(b)) << name << ", " << tag;
             if (name.find("Radiance") == std::string::npos) continue;
-            for (float v : b.pixels) ASSERT_GE(v, 0.0f) << name << ", " << tag;
+            // Spherical-harmonic coefficients are signed by construction; every other radiance is >= 0.
+            if (name.find(" SH") == std::string::npos)
+                for (float v : b.pixels) ASSERT_GE(v, 0.0f) << name << ", " << tag;
             NeutralReport n = checkNeutral(b);
             std::printf("%s, %s: B/G %.4f R/G %.4f; worst channel spread %.4f, %d/%d pixels beyond three steps, %d saturated\n", tag.c_str(),
                         name.c_str(), meanChannel(b, 2) / meanChannel(b, 1), meanChannel(b, 0) / meanChannel(b, 1), n.worst, n.bad, n.pixels, n.saturated);

@@ -138,6 +138,13 @@ struct SceneObjectStd430 {
 };
 }  // namespace
 
+uint64_t SceneGpu::geometryBytes(const Scene& scene) {
+    uint64_t bytes = uint64_t(std::max<size_t>(scene.parts.size(), 1)) * sizeof(SceneObjectStd430);
+    for (const auto& p : scene.parts)
+        if (!p.indices.empty()) bytes += p.vertices.size() * (sizeof(Vertex) + sizeof(uint32_t)) + p.indices.size() * sizeof(uint32_t);
+    return bytes;
+}
+
 void SceneGpu::drawBatch(const Batch& b) const {
     if (allVisible_) {
         glDrawElements(GL_TRIANGLES, GLsizei(b.indexCount), GL_UNSIGNED_INT,

@@ -12,6 +12,9 @@ namespace deepgi {
 class SceneGpu {
 public:
     explicit SceneGpu(const Scene& scene);
+    // Bytes of the buffers the constructor uploads for `scene`: vertices, their part indices, indices and the object
+    // buffer (3 matrices + an id per part). For `deepgi buffers`.
+    static uint64_t geometryBytes(const Scene& scene);
     SceneGpu(const SceneGpu&) = delete;
     SceneGpu& operator=(const SceneGpu&) = delete;
 
