@@ -23,7 +23,7 @@ CommandRegistrar registrar("buffers", "List every texture the renderer allocates
         int w = 0, h = 0;
         parseSize(*size, w, h);
         const Settings s = settings->build();
-        auto scene = std::make_shared<Scene>(loadScene(scenePath->empty() ? defaultScenePath() : *scenePath, gltfLoadOptions(s)));
+        auto scene = std::make_shared<Scene>(loadScene(scenePath->empty() ? defaultScenePath() : *scenePath, withLoadProgress(gltfLoadOptions(s), *scenePath)));
         gl::HeadlessContext context;
         Renderer renderer;
         renderer.setScene(scene);

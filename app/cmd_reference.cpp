@@ -55,7 +55,7 @@ int runReference(const ReferenceArgs& a) {
     if (!a.preset.empty()) applyPreset(settings, a.preset);
     for (const std::string& kv : a.assignments) applyAssignment(settings, kv);
 
-    Scene scene = loadScene(a.scene, gltfLoadOptions(settings));
+    Scene scene = loadScene(a.scene, withLoadProgress(gltfLoadOptions(settings), a.scene));
     if (!scene.bounds.valid()) scene.computeBounds();
     attachEnvironment(scene, a.environment);
     for (const std::string& w : scene.warnings) std::fprintf(stderr, "deepgi: warning: %s\n", w.c_str());

@@ -2,10 +2,35 @@
 
 #include "renderer/core/util.h"
 
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <memory>
 #include <stdexcept>
 #include <tuple>
 
 namespace deepgi {
+
+GltfLoadOptions withLoadProgress(GltfLoadOptions options, const std::string& path) {
+    using Clock = std::chrono::steady_clock;
+    struct State { Clock::time_point start = Clock::now(), last; bool printed = false; };
+    auto state = std::make_shared<State>();
+    const std::string name = std::filesystem::path(path).filename().string();
+    options.progress = [state, name](const char* stage, double fraction) {
+        const Clock::time_point now = Clock::now();
+        const double elapsed = std::chrono::duration<double>(now - state->start).count();
+        if (std::string(stage) == "done") {
+            if (state->printed) std::fprintf(stderr, "deepgi: loaded %s in %.1f s\n", name.c_str(), elapsed);
+            return;
+        }
+        if (elapsed < 0.5 || (state->printed && now - state->last < std::chrono::milliseconds(500))) return;
+        std::fprintf(stderr, "deepgi: loading %s: %s %3.0f %%\n", name.c_str(), stage, 100.0 * fraction);
+        state->printed = true;
+        state->last = now;
+    };
+    return options;
+}
+
 
 void SettingsOptions::add(CLI::App& sub) {
     sub.add_option("--preset", preset, "Preset: performance, balanced or quality");

@@ -1,4 +1,5 @@
 #include "app/render_job.h"
+#include "app/options.h"
 
 #include "renderer/scene/animation.h"
 
@@ -28,7 +29,7 @@ static std::string fileNameFor(const std::string& layer) {
 
 RenderJobResult runRenderJob(const RenderJob& job) {
     RenderJobResult result;
-    auto scene = std::make_shared<Scene>(loadScene(job.scenePath, gltfLoadOptions(job.settings)));
+    auto scene = std::make_shared<Scene>(loadScene(job.scenePath, withLoadProgress(gltfLoadOptions(job.settings), job.scenePath)));
     attachEnvironment(*scene, job.environment);
     result.warnings = scene->warnings;
     result.triangles = scene->triangleCount();

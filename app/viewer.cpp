@@ -4,6 +4,7 @@
 // interpreter in ui/.
 #ifdef DEEPGI_HAVE_UI
 #include "app/viewer_app.h"
+#include "app/options.h"
 
 #include <imgui.h>
 #include <imgui_impl_glfw.h>
@@ -132,7 +133,7 @@ bool Viewer::init() {
     views_[1] = std::make_unique<BufferViewPass>();
 
     {
-        Scene loaded = loadScene(opt_.scenePath);
+        Scene loaded = loadScene(opt_.scenePath, withLoadProgress({}, opt_.scenePath));
         attachEnvironment(loaded, opt_.environment);
         scene_ = std::make_shared<Scene>(std::move(loaded));
     }

@@ -717,3 +717,21 @@ TEST_F(GLTest, RealAssetCompressedByTheToolsRendersLikeTheOriginal) {
         EXPECT_LT(rel, 0.01) << p;
     }
 }
+
+// Load progress (issue 10, big scenes): both loaders report stages with a fraction that never decreases and end
+// at "done" 1, so a command can show how far a long load is.
+TEST(SceneLoad, ProgressRisesToDone) {
+    for (const std::string path : {kTestAssets + "/obj_room/room.obj", std::string(DEEPGI_ASSET_DIR) + "/hard/furnace/furnace.gltf"}) {
+        std::vector<std::pair<std::string, double>> calls;
+        GltfLoadOptions o;
+        o.progress = [&](const char* stage, double f) { calls.emplace_back(stage, f); };
+        const Scene s = loadScene(path, o);
+        ASSERT_GE(calls.size(), 3u) << path;
+        EXPECT_EQ(calls.front().first, "reading") << path;
+        EXPECT_EQ(calls.front().second, 0.0) << path;
+        EXPECT_EQ(calls.back().first, "done") << path;
+        EXPECT_EQ(calls.back().second, 1.0) << path;
+        for (size_t i = 1; i < calls.size(); ++i) EXPECT_GE(calls[i].second, calls[i - 1].second) << path << " call " << i;
+        EXPECT_GT(s.triangleCount(), 0u);
+    }
+}

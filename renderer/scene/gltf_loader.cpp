@@ -191,18 +191,22 @@ Transform localTransform(const tinygltf::Node& n, bool* sheared) {
 
 Scene GltfReader::run() {
     scene_.sourcePath = path_;
+    opt_.report("reading", 0.0);  // the file, its buffers and images (tinygltf decodes the images while parsing)
     parse();
     checkExtensions();
     decodeMeshopt();
     decodeDraco();
+    opt_.report("materials", 0.5);
     loadMaterials();
     warnIgnoredMaterialExtensions();
+    opt_.report("meshes", 0.55);
     traverse();
     loadAnimations();
     validateScene(scene_);
     scene_.ensureNodes();
     scene_.computeBounds();
     scene_.loadPeakBytes = budget_.peak();
+    opt_.report("done", 1.0);
     return std::move(scene_);
 }
 
@@ -363,6 +367,7 @@ void GltfReader::traverse() {
             if (!isChild[i]) roots.push_back(int(i));
     }
     std::vector<char> visited(model_.nodes.size(), 0);
+    size_t visitedCount = 0;
     // Iterative depth-first walk (no recursion: deep hierarchies cannot overflow the stack).
     struct Visit { int node; glm::mat4 parentWorld; int parentSceneNode; };
     std::vector<Visit> stack;
@@ -375,6 +380,7 @@ void GltfReader::traverse() {
         if (visited[size_t(ni)])
             fail("node " + std::to_string(ni) + " is reached twice (cycle or shared child in the node hierarchy)");
         visited[size_t(ni)] = 1;
+        opt_.report("meshes", 0.55 + 0.45 * double(visitedCount++) / double(model_.nodes.size()));
         const auto& node = model_.nodes[size_t(ni)];
         const glm::mat4 world = parent * localMatrix(node);
         bool sheared = false;

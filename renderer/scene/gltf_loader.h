@@ -3,6 +3,7 @@
 #include "renderer/scene/scene.h"
 
 #include <stdexcept>
+#include <functional>
 #include <string>
 
 namespace deepgi {
@@ -24,6 +25,12 @@ struct GltfLoadOptions {
     // Larger textures are downscaled at load (with a warning) to fit; 16384 is GL_MAX_TEXTURE_SIZE on llvmpipe
     // and the most common limit on GPUs.
     int maxTextureSize = 16384;
+    // Called as the load advances: a stage ("reading", "materials", "meshes", "done") and the fraction of the whole
+    // load done (0..1, never decreasing). Empty = quiet. For the commands' progress line on big scenes.
+    std::function<void(const char* stage, double fraction)> progress;
+    void report(const char* stage, double fraction) const {
+        if (progress) progress(stage, fraction);
+    }
 };
 
 struct Settings;

@@ -244,6 +244,7 @@ Material ObjReader::material(const tinyobj::material_t& om) {
 
 Scene ObjReader::run() {
     scene_.sourcePath = path_;
+    opt_.report("reading", 0.0);  // the file, then tinyobjloader's parse and the MTL's textures
     std::vector<unsigned char> data = readSceneFile(path_, "an OBJ");
     budget_.reserve(data.size(), "the file itself", true);
     const ObjCounts counts = scanObj(data);
@@ -306,7 +307,9 @@ Scene ObjReader::run() {
 
     const size_t nv = attrib.vertices.size() / 3, nn = attrib.normals.size() / 3, nt = attrib.texcoords.size() / 2;
     uint64_t skipped = 0;
+    opt_.report("meshes", 0.6);
     for (const auto& shape : shapes) {
+        opt_.report("meshes", 0.6 + 0.4 * double(&shape - shapes.data()) / double(shapes.size()));
         const auto& mesh = shape.mesh;
         const std::string shapeName = shape.name.empty() ? "object" + std::to_string(&shape - shapes.data()) : shape.name;
         if (mesh.num_face_vertices.size() != mesh.material_ids.size() || mesh.indices.size() != mesh.num_face_vertices.size() * 3)
@@ -410,6 +413,7 @@ Scene ObjReader::run() {
     scene_.ensureNodes();
     scene_.computeBounds();
     scene_.loadPeakBytes = budget_.peak();
+    opt_.report("done", 1.0);
     return std::move(scene_);
 }
 
