@@ -74,6 +74,9 @@ std::string referenceKey(const Scene& scene, const Camera& camera, const Setting
     for (int v : {width, height, spp, bounces}) h = fnv1aValue(h, v);
     h = fnv1aValue(h, seed);
     for (float v : {s.sunAzimuth, s.sunElevation, s.sunIntensity, s.lightScale, s.background}) h = fnv1aValue(h, v);
+    // The metallic-roughness BRDF (GGX, F0 0.04 on dielectrics) changed the references cached before it; diffuse_only
+    // is the old Lambertian transport (albedo = base colour), whose keys stay as they were.
+    if (!s.diffuseOnly) h = fnv1aValue(h, uint32_t(0x4d525631));  // "MRV1"
     return hex(h);
 }
 

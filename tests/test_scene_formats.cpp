@@ -680,11 +680,12 @@ TEST(ObjLoader, RenderAndBuffersCommandsOpenObj) {
     std::string out = runDeepgi("render " + room + " --size 32x32 --frames 1 --out " + (d.path() / "r").string(), &status);
     EXPECT_EQ(status, 0) << out;
     EXPECT_TRUE(fs::exists(d.path() / "r" / "final.png")) << out;
-    // geometry: 32-byte vertices and 4-byte indices as loaded; textures: two 64x64 RGBA8 images with their full
-    // mip chains, 4 * (4096 + 1024 + 256 + 64 + 16 + 4 + 1) bytes each
+    // geometry: 48-byte vertices (position, normal, uv, tangent) and 4-byte indices as loaded; textures: two 64x64
+    // RGBA8 images with their full mip chains, 4 * (4096 + 1024 + 256 + 64 + 16 + 4 + 1) bytes each
+    static_assert(sizeof(Vertex) == 48, "Vertex: 3 + 3 + 2 + 4 floats");
     const Scene s = loadScene(room);
     size_t geometry = 0;
-    for (const auto& p : s.parts) geometry += p.vertices.size() * 32 + p.indices.size() * 4;
+    for (const auto& p : s.parts) geometry += p.vertices.size() * 48 + p.indices.size() * 4;
     out = runDeepgi("buffers " + room + " --size 64x64", &status);
     EXPECT_EQ(status, 0) << out;
     EXPECT_NE(out.find("scene geometry: " + std::to_string(geometry) + " bytes"), std::string::npos) << out;
