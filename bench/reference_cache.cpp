@@ -83,6 +83,9 @@ std::string referenceKey(const Scene& scene, const Camera& camera, const Setting
             h = fnv1a(h, scene.environment->rgb.data(), scene.environment->rgb.size() * sizeof(float));
         }
     }
+    // The metallic-roughness BRDF (GGX, F0 0.04 on dielectrics) changed the references cached before it; diffuse_only
+    // is the old Lambertian transport (albedo = base colour), whose keys stay as they were.
+    if (!s.diffuseOnly) h = fnv1aValue(h, uint32_t(0x4d525631));  // "MRV1"
     return hex(h);
 }
 

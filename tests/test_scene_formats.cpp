@@ -683,6 +683,7 @@ TEST(ObjLoader, RenderAndBuffersCommandsOpenObj) {
     // geometry: 48-byte vertices (position, normal, uv, tangent) each with a 4-byte part index, 4-byte indices, and
     // per part 3 matrices + an id (208 bytes); textures: two 64x64 RGBA8 images with their full mip chains,
     // 4 * (4096 + 1024 + 256 + 64 + 16 + 4 + 1) bytes each
+    static_assert(sizeof(Vertex) == 48, "Vertex: 3 + 3 + 2 + 4 floats");
     const Scene s = loadScene(room);
     size_t geometry = s.parts.size() * 208;
     for (const auto& p : s.parts) geometry += p.vertices.size() * (48 + 4) + p.indices.size() * 4;

@@ -11,9 +11,11 @@ void DeepGBufferPass::table(const PipelineConfig& c, PassTable& t) const {
              "Hyperbolic depth of both layers; layer 2 is the nearest surface at least min-separation behind layer 1"})
         .level(Levels::Base);
     t.write({"Albedo", {"Albedo 1", "Albedo 2"}, GL_RGB8, GL_TEXTURE_2D_ARRAY, SizeRule::screen(), 1,
-             MemoryGroup::GBuffer, Visualize::Color, "Lambertian albedo (base colour x texture) of both layers"});
+             MemoryGroup::GBuffer, Visualize::Color,
+             "Diffuse albedo of both layers: base colour x texture x (1 - metallic) (the base colour with "
+             "material.diffuse_only)"});
     t.write({"Normal", {"Normal 1", "Normal 2"}, GL_RG8_SNORM, GL_TEXTURE_2D_ARRAY, SizeRule::screen(),
-             kGatherLevels, MemoryGroup::GBuffer, Visualize::Normal, "World-space normal of both layers, oct16 encoded"})
+             kGatherLevels, MemoryGroup::GBuffer, Visualize::Normal, "World-space shading normal of both layers (normal-mapped), oct16 encoded"})
         .level(Levels::Base);
     t.write({"Last Depth", {"Last Depth"}, GL_DEPTH_COMPONENT32, GL_TEXTURE_2D, SizeRule::screen(), 1,
              MemoryGroup::GBuffer, Visualize::Depth, "Layer-1 depth of the previous frame (predicts layer 1 for the separation test)"},

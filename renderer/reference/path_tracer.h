@@ -1,17 +1,20 @@
 #pragma once
 // Reference path tracer on Embree 3: the ground truth for the Deep G-Buffer renderer, with the same light
 // transport (renderer/scene/lighting.h):
-//   - Lambertian surfaces only; albedo = baseColorFactor.rgb * sRGB-decoded base texture (bilinear, mip 0);
-//     masked materials (Mask, Blend) are transparent where factor.a * texture.a < alphaCutoff.
+//   - glTF metallic-roughness (renderer/scene/brdf.h): a Lambertian lobe of albedo base x (1 - metallic), base =
+//     baseColorFactor.rgb * sRGB-decoded base texture (bilinear, mip 0), plus GGX specular; normal maps with the
+//     vertices' tangents; the occlusion texture scales the light of every bounce. material.diffuse_only: Lambertian,
+//     albedo = base colour. Masked materials (Mask, Blend) are transparent where factor.a * texture.a < alphaCutoff.
+//   - Bounces choose the diffuse or the GGX lobe (visible-normal sampling) and weight by both lobes' density.
 //   - Emission (emissiveFactor * sRGB-decoded emissive texture) is added wherever a camera or bounce ray hits.
 //   - Single-sided surfaces are invisible from behind to camera and bounce rays (the rasterizer culls back
 //     faces) but block shadow rays from both sides (the shadow maps are rendered without culling).
-//   - Next-event estimation towards every light of effectiveLights(); cosine-weighted bounces; Russian roulette
-//     after the third bounce. Camera rays that miss see light.background + the environment; bounce rays that miss
-//     get the environment (renderer/scene/environment_map.h) unless a back face was in the way (both faces
-//     block the sky, as they block shadow rays and the probes' rays), whose map is importance-sampled (luminance x
-//     sin(theta)) for next-event estimation at every hit, combined with the cosine sampling of the bounces by the
-//     power heuristic; a uniform sky alone is left to the cosine sampling.
+//   - Next-event estimation towards every light of effectiveLights(); bounces sampled from the BRDF (diffuse, or
+//     diffuse + GGX by a lobe choice); Russian roulette after the third bounce. Camera rays that miss see
+//     light.background + the environment; bounce rays that miss get the environment (renderer/scene/environment_map.h)
+//     unless a back face was in the way (both faces block the sky, as they block shadow rays and the probes' rays),
+//     whose map is importance-sampled (luminance x sin(theta)) for next-event estimation at every hit, combined with
+//     the BRDF sampling of the bounces by the power heuristic; a uniform sky alone is left to the BRDF sampling.
 #include "renderer/core/camera.h"
 #include "renderer/core/image_io.h"
 #include "renderer/core/settings.h"

@@ -1,8 +1,8 @@
 // glTF loader, materials: materials, textures, samplers and images.
 // Images are decoded here (not by tinygltf) by decodeImage (scene_files.h), which checks the claimed dimensions
-// against GltfLoadOptions::maxImagePixels first. Only images used by a base-colour or emissive texture are
-// decoded. A missing/corrupt/refused image only drops the texture (warning naming the image), so the material falls
-// back to its factor colour.
+// against GltfLoadOptions::maxImagePixels first. Only images a material uses are decoded (base colour, emissive,
+// metallic-roughness, normal, occlusion; the last three as linear data textures). A missing/corrupt/refused image
+// only drops the texture (warning naming the image), so the material falls back to its factors.
 #include "renderer/scene/gltf_reader.h"
 
 #include <algorithm>
