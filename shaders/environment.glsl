@@ -44,46 +44,19 @@ vec3 environmentBackdrop(vec2 fragCoord) {
 #ifdef DEEPGI_SKY
 uniform sampler2D uProbeSky;
 
-// probeIrradianceWeighted()'s weights (probe_volume.glsl) over the sky atlas; C++: ProbeVolume::skyIrradiance().
+// probeIrradianceWeighted()'s probes and weights (probeCell, probeCorner in probe_volume.glsl) over the sky atlas;
+// C++: ProbeVolume::skyIrradiance().
 vec3 probeSkyIrradiance(vec3 X, vec3 n) {
-    if (any(isnan(X)) || any(isinf(X)) || any(isnan(n)) || any(isinf(n)) || !(dot(n, n) > 1e-12)) return vec3(0.0);
-    vec3 spacing = uProbeSpacing.xyz;
-    ivec3 last = uProbeCounts.xyz - 1;
-    vec3 biased = X + n * uProbeLo.w;
-    vec3 g = clamp((biased - uProbeLo.xyz) / spacing - 0.5, vec3(-1.0), vec3(last));
-    ivec3 base = clamp(ivec3(floor(g)), ivec3(0), last - 1);
-    vec3 alpha = clamp(g - vec3(base), 0.0, 1.0);
+    ivec3 base;
+    vec3 alpha, biased;
+    if (!probeCell(X, n, base, alpha, biased)) return vec3(0.0);
     vec2 skySize = vec2(textureSize(uProbeSky, 0)), depthSize = vec2(textureSize(uProbeDepth, 0));
     vec3 sum = vec3(0.0);
     float total = 0.0;
     for (int i = 0; i < 8; ++i) {
-        ivec3 o = ivec3(i & 1, (i >> 1) & 1, (i >> 2) & 1);
-        ivec3 c = base + o;
-        int probe = c.x + uProbeCounts.x * (c.y + uProbeCounts.y * c.z);
-        vec4 data = texelFetch(uProbeData, ivec2(probe % uProbeCounts.w, probe / uProbeCounts.w), 0);
-        if (data.w < 0.5) continue;
-        vec3 probePos = uProbeLo.xyz + (vec3(c) + 0.5) * spacing + data.xyz;
-        vec3 tri3 = mix(1.0 - alpha, alpha, vec3(o));
-        float trilinear = max(0.001, tri3.x * tri3.y * tri3.z);
-        vec3 toProbe = probePos - X;
-        float toProbeLen = length(toProbe);
-        float wrap = toProbeLen > 0.0 ? (dot(toProbe / toProbeLen, n) + 1.0) * 0.5 : 1.0;
-        float weight = wrap * wrap + 0.2;
-        vec3 probeToPoint = biased - probePos;
-        float dist = length(probeToPoint);
-        if (dist > 0.0) {
-            vec2 m = texture(uProbeDepth, probeAtlasUv(probe, uProbeTexels.y, probeToPoint / dist, depthSize)).rg;
-            if (dist > m.x) {
-                float variance = abs(m.y - m.x * m.x);
-                float d = dist - m.x;
-                float chebyshev = variance / (variance + d * d);
-                weight *= max(chebyshev * chebyshev * chebyshev, 0.05);
-            }
-        }
-        weight = max(weight, 1e-6);
-        const float crush = 0.2;
-        if (weight < crush) weight *= weight * weight / (crush * crush);
-        weight *= trilinear;
+        float weight;
+        int probe = probeCorner(i, base, alpha, X, n, biased, depthSize, weight);
+        if (probe < 0) continue;
         sum += weight * texture(uProbeSky, probeAtlasUv(probe, uProbeTexels.x, n, skySize)).rgb;
         total += weight;
     }

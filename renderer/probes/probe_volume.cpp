@@ -381,15 +381,7 @@ float ProbeVolume::probeWeights(const glm::vec3& x, const glm::vec3& n, int prob
 }
 
 glm::vec3 ProbeVolume::irradiance(const glm::vec3& x, const glm::vec3& n, float* weightSum) const {
-    int probes[8];
-    float weights[8];
-    const float total = probeWeights(x, n, probes, weights);
-    if (weightSum) *weightSum = total;
-    const glm::vec2 octN = octahedral::encode(glm::dot(n, n) > 1e-12f ? n : glm::vec3(0, 0, 1));
-    glm::vec3 sum(0.0f);
-    for (int i = 0; i < 8; ++i)
-        if (probes[i] >= 0) sum += weights[i] * glm::vec3(sampleAtlas<4>(irradiance_, irrN_, probes[i], octN));
-    return sum;
+    return weightedAtlasIrradiance(irradiance_, x, n, weightSum);
 }
 
 glm::vec3 ProbeVolume::radiance(const glm::vec3& x, const glm::vec3& n, const glm::vec3& dir) const {
@@ -614,51 +606,19 @@ glm::vec3 ProbeVolume::skyIrradiance(const glm::vec3& x, const glm::vec3& n, flo
     return weightedAtlasIrradiance(sky_, x, n, weightSum);
 }
 
-// irradiance()'s weights (trilinear, back-face, Chebyshev visibility, crush) over another atlas of its layout;
-// shaders/environment.glsl's probeSkyIrradiance() is the GLSL side.
+// An irradiance-layout atlas (the bounce's or the sky's) at x, n, weighted by probeWeights (trilinear, back-face,
+// Chebyshev visibility, crush); shaders/probe_volume.glsl and environment.glsl are the GLSL side.
 glm::vec3 ProbeVolume::weightedAtlasIrradiance(const std::vector<float>& atlas, const glm::vec3& x, const glm::vec3& n,
                                                float* weightSum) const {
-    if (weightSum) *weightSum = 0.0f;
-    if (!finite3(x) || !finite3(n) || !(glm::dot(n, n) > 1e-12f)) return glm::vec3(0.0f);
-    const glm::vec3 biased = x + n * normalBias_;
-    const glm::ivec3 last = grid_.counts - 1;
-    const glm::vec3 g = glm::clamp((biased - grid_.lo) / grid_.spacing - 0.5f, glm::vec3(-1.0f), glm::vec3(last));
-    const glm::ivec3 base = glm::clamp(glm::ivec3(glm::floor(g)), glm::ivec3(0), last - 1);
-    const glm::vec3 alpha = glm::clamp(g - glm::vec3(base), 0.0f, 1.0f);
-    const glm::vec2 octN = octahedral::encode(n);
-    glm::vec3 sum(0.0f);
-    float total = 0.0f;
-    for (int i = 0; i < 8; ++i) {
-        const glm::ivec3 o(i & 1, (i >> 1) & 1, (i >> 2) & 1);
-        const int probe = grid_.index(base + o);
-        if (state_[probe] != ProbeState::Active) continue;
-        const glm::vec3 probePos = grid_.gridPosition(base + o) + offset_[probe];
-        const glm::vec3 tri3 = glm::mix(1.0f - alpha, alpha, glm::vec3(o));
-        const float trilinear = std::max(0.001f, tri3.x * tri3.y * tri3.z);
-        const glm::vec3 toProbe = probePos - x;
-        const float toProbeLen = glm::length(toProbe);
-        const float wrap = toProbeLen > 0.0f ? (glm::dot(toProbe / toProbeLen, n) + 1.0f) * 0.5f : 1.0f;
-        float weight = wrap * wrap + 0.2f;
-        const glm::vec3 probeToPoint = biased - probePos;
-        const float dist = glm::length(probeToPoint);
-        if (dist > 0.0f) {
-            const glm::vec2 m = sampleAtlas<2>(depth_, depthN_, probe, octahedral::encode(probeToPoint / dist));
-            if (dist > m.x) {
-                const float variance = std::abs(m.y - m.x * m.x);
-                const float d = dist - m.x;
-                const float chebyshev = variance / (variance + d * d);
-                weight *= std::max(chebyshev * chebyshev * chebyshev, 0.05f);
-            }
-        }
-        weight = std::max(weight, 1e-6f);
-        constexpr float kCrush = 0.2f;
-        if (weight < kCrush) weight *= weight * weight / (kCrush * kCrush);
-        weight *= trilinear;
-        sum += weight * glm::vec3(sampleAtlas<4>(atlas, irrN_, probe, octN));
-        total += weight;
-    }
+    int probes[8];
+    float weights[8];
+    const float total = probeWeights(x, n, probes, weights);
     if (weightSum) *weightSum = total;
-    return total > 0.0f ? sum / total : glm::vec3(0.0f);
+    const glm::vec2 octN = octahedral::encode(glm::dot(n, n) > 1e-12f ? n : glm::vec3(0, 0, 1));
+    glm::vec3 sum(0.0f);
+    for (int i = 0; i < 8; ++i)
+        if (probes[i] >= 0) sum += weights[i] * glm::vec3(sampleAtlas<4>(atlas, irrN_, probes[i], octN));
+    return sum;
 }
 
 // The octahedral border: each edge folds onto itself mirrored, each corner is the opposite interior corner, so
