@@ -804,11 +804,12 @@ namespace {
 // second reference with another seed does (both differ only by Monte Carlo noise): block relative L1 within 1.3x
 // that noise floor + 0.5 %, ratio of means within 3x the floor of 1. The figures line is live, and moving the
 // camera restarts the accumulation (each check waits half a second, not a count of frames: the dynamic resolution
-// makes a moving frame fast, and the path tracer needs time for its first samples).
+// makes a moving frame fast, and the path tracer needs time for its first samples; the light change waits two seconds:
+// the new generation shows with its first finished pass, and under the sanitizers an 8-sample pass is still running).
 TEST_F(ViewerRound2, PathTraceThisViewMatchesTheReference) {
     ViewerRun r = view(std::string(kSetup) + "pathtrace split\nsleep 4\nwait 1\ndump_figures a.txt\ncapture\nscreenshot split.png\n"
                        "key KP_7\nsleep 0.5\nwait 1\ndump_figures b.txt\nset composite.exposure=1\nsleep 0.5\nwait 1\ndump_figures c.txt\n"
-                       "set light.intensity_scale=2\nsleep 0.5\nwait 1\ndump_figures d.txt\n",
+                       "set light.intensity_scale=2\nsleep 2\nwait 1\ndump_figures d.txt\n",
                        "--screenshots '" + path("shots") + "'");
     ASSERT_EQ(r.rc, 0) << r.log;
     auto a = readDump(path("a.txt")), b = readDump(path("b.txt"));

@@ -23,7 +23,7 @@ export UBSAN_OPTIONS="suppressions=$SUPP/ubsan.supp:print_stacktrace=1:halt_on_e
 # The viewer (GLX) and EGL tests load Mesa's DRI driver with dlopen; it is unloaded before LeakSanitizer runs, so
 # the driver's own allocations show up as "<unknown module>" with no deepgi frame and no suppression can name them.
 # Those tests run with ASan and UBSan but without leak detection; every other test keeps it.
-NO_LEAK_CHECK='^(Viewer\.|ViewerRound2\.|OffscreenContext\.Egl)'
+NO_LEAK_CHECK='^(Viewer\.|ViewerRound2\.|ViewerEdit\.|OffscreenContext\.Egl)'
 set +e
 (cd "$BUILD" && ctest --output-on-failure -j"$JOBS" --timeout 1200 -E "$NO_LEAK_CHECK" "$@")
 rc=$?
