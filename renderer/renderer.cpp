@@ -98,6 +98,7 @@ void Renderer::setScene(std::shared_ptr<const Scene> scene) {
     sceneGpu_ = std::make_unique<SceneGpu>(*scene_);
     lightBounds_ = scene_->bounds;
     probes_.reset();  // the volume traces the old scene
+    sceneMoved_ = false;
     shadowKey_ = 0;
     configValid_ = false;
     historyValid_ = false;
@@ -111,6 +112,7 @@ void Renderer::sceneChanged(unsigned changes) {
     } else if (geometry) {
         sceneGpu_->updateObjects(*scene_);
     }
+    if (changes & unsigned(SceneChange::Transforms)) sceneMoved_ = true;  // from now on: the Motion texture
     if (geometry) {
         const Aabb now = scene_->currentBounds();
         lightBounds_ = now.valid() ? now : scene_->bounds;
@@ -153,6 +155,9 @@ PipelineConfig Renderer::makeConfig(const Settings& s) const {
     c.emission = scene_->hasEmission();
     c.specular = scene_->hasSpecular() && !s.diffuseOnly;
     c.occlusion = scene_->hasOcclusion();
+    c.normalMaps = scene_->hasNormalMaps();
+    c.objectIds = options_.sceneEditing;
+    c.objectMotion = s.objectMotion && (options_.sceneEditing || sceneMoved_ || !scene_->animations.empty());
     c.indirect = s.indirect;
     c.seedComposite = s.compositeMode == CompositeMode::Seed;
     c.blur = s.blur;
@@ -303,13 +308,19 @@ void Renderer::prepareResolved(const Settings& s) {
     }
     PipelineConfig c = makeConfig(s);
     const bool rebuild = !configValid_ || !(c == config_);
-    if (rebuild) historyValid_ = false;  // buffers change meaning
+    // Only G-buffer targets written afresh every frame come or go (the first move adds Motion): the history holds.
+    PipelineConfig sameTargets = c;
+    sameTargets.normalMaps = config_.normalMaps;
+    sameTargets.objectIds = config_.objectIds;
+    sameTargets.objectMotion = config_.objectMotion;
+    const bool keepHistory = rebuild && configValid_ && sameTargets == config_;
+    if (rebuild && !keepHistory) historyValid_ = false;  // buffers change meaning
     config_ = c;
     configValid_ = true;
     if (rebuild || stages_.size() != passes_.size()) buildPipeline();
     const uint64_t before = textures_.generation();
     textures_.reconcile(allocations_, width_, height_, std::max(1, s.shadowMapSize));
-    if (textures_.generation() != before) historyValid_ = false;
+    if (textures_.generation() != before && !keepHistory) historyValid_ = false;
     if (fboGeneration_ != textures_.generation()) {
         fbos_.clear();
         fboGeneration_ = textures_.generation();

@@ -55,6 +55,11 @@ inline unsigned operator|(unsigned a, SceneChange b) { return a | unsigned(b); }
 struct RendererOptions {
     std::string shaderDir = DEEPGI_SHADER_DIR;
     TimingMode timing = TimingMode::WallClock;
+    // The client edits the scene live (the viewer): every frame writes Object ID (picking, the selection outline)
+    // and Motion (each object's own motion, with gbuffer.object_motion). Otherwise Object ID is not written and
+    // Motion only once the scene is animated or has moved (the first sceneChanged(Transforms) restarts the
+    // history once): a still scene pays for neither.
+    bool sceneEditing = false;
 };
 
 class Renderer {
@@ -79,7 +84,7 @@ public:
     void sceneChanged(unsigned changes);
     void sceneChanged(SceneChange change) { sceneChanged(unsigned(change)); }
     // Node index under pixel (x, y) (row 0 = top) of the last frame, -1 = none (sky, outside, no frame yet); from
-    // the "Object ID" texture, layer 1.
+    // the "Object ID" texture, layer 1 (written with RendererOptions::sceneEditing; -1 without).
     int objectAt(int x, int y) const;
     // 0 x 0 is allowed (a minimised window): render() then does nothing.
     void resize(int width, int height);
@@ -167,6 +172,7 @@ private:
     int width_ = 0, height_ = 0;
     Camera camera_, prevCamera_;
     bool historyValid_ = false;
+    bool sceneMoved_ = false;  // sceneChanged(Transforms) since setScene: objects move, Motion is written
     uint64_t frameIndex_ = 0;
     std::vector<PassTiming> timings_;
     // GpuQueries: two sets of one GL_TIME_ELAPSED query per pass; a set is read back when reused two frames later.

@@ -4,16 +4,23 @@
 // (reprojected with the previous camera), or exact from this frame's layer 1 when depth peeling.
 #include "common.glsl"
 #include "material.glsl"
-in GS { vec3 world; vec3 normal; vec2 uv; vec4 tangent; } gs;
+in GS { vec3 world; vec3 normal; vec2 uv; } gs;
+#ifdef NORMAL_MAPS
+in vec4 gsTangent;
+#endif
 layout(location = 0) out vec3 oAlbedo;
 layout(location = 1) out vec2 oNormal;
 #ifdef EMISSION
 layout(location = 2) out vec3 oEmission;
 #endif
-in vec3 gsPrevWorld;       // this surface point last frame (its object's previous model matrix)
+#ifdef OBJECT_IDS
 flat in uint gsObjectId;   // node index + 1
 layout(location = 5) out uint oObjectId;
+#endif
+#ifdef OBJECT_MOTION
+in vec3 gsPrevWorld;       // this surface point last frame (its object's previous model matrix)
 layout(location = 6) out vec4 oMotion;  // xyz: previous - current world position (the paper's per-object change)
+#endif
 #ifdef SPECULAR
 layout(location = 3) out vec4 oSpecular;  // F0 rgb, perceptual roughness
 #endif
@@ -51,12 +58,17 @@ void main() {
             if (!isSky(d0) && eyeDepthCurrent(gl_FragCoord.z) < eyeDepthCurrent(d0) + uMinSeparation) discard;
         } else {
             // Where this point was last frame (its own motion, not only the camera's).
-            vec4 pc = uPrevViewProj * vec4(gsPrevWorld, 1.0);
+#ifdef OBJECT_MOTION
+            vec3 prevWorld = gsPrevWorld;
+#else
+            vec3 prevWorld = gs.world;
+#endif
+            vec4 pc = uPrevViewProj * vec4(prevWorld, 1.0);
             if (pc.w > 0.0 || uPrevCameraPos.w < 0.5) {
                 vec2 uv = clamp(pc.xy / pc.w * 0.5 + 0.5, vec2(0.0), vec2(1.0));
                 ivec2 size = textureSize(uLastDepth, 0);
                 float dLast = texelFetch(uLastDepth, min(ivec2(uv * vec2(size)), size - 1), 0).r;
-                float zPrev = dot(gsPrevWorld - uPrevCameraPos.xyz, uPrevCameraForward.xyz);
+                float zPrev = dot(prevWorld - uPrevCameraPos.xyz, uPrevCameraForward.xyz);
                 if (!isSky(dLast) && zPrev < eyeDepthPrevious(dLast) + uMinSeparation) discard;
             }
         }
@@ -66,11 +78,17 @@ void main() {
     n = (len > 1e-20 && !isnan(len)) ? n / len : normalize(cross(dFdx(gs.world), dFdy(gs.world)));
     if (!gl_FrontFacing) n = -n;  // only double-sided materials reach here with back faces
     if (any(isnan(n))) n = vec3(0.0, 1.0, 0.0);
-    n = mappedNormal(n, gl_FrontFacing ? gs.tangent : -gs.tangent, gs.uv);
+#ifdef NORMAL_MAPS
+    n = mappedNormal(n, gl_FrontFacing ? gsTangent : -gsTangent, gs.uv);
+#endif
     oNormal = octEncode(n);
+#ifdef OBJECT_IDS
     oObjectId = gsObjectId;
+#endif
+#ifdef OBJECT_MOTION
     vec3 motion = gsPrevWorld - gs.world;
     oMotion = vec4(any(isnan(motion)) || any(isinf(motion)) ? vec3(0.0) : motion, 0.0);
+#endif
     writeMaterial(clamp(base.rgb, 0.0, 1.0));
 #ifdef EMISSION
     oEmission = sanitizeR11G11B10(emission(gs.uv), gl_FragCoord.xy);

@@ -3,12 +3,20 @@
 #include "common.glsl"
 layout(triangles) in;
 layout(triangle_strip, max_vertices = 6) out;
-in VS { vec3 world; vec3 normal; vec2 uv; vec4 tangent; } vs[];
-out GS { vec3 world; vec3 normal; vec2 uv; vec4 tangent; } gs;
+in VS { vec3 world; vec3 normal; vec2 uv; } vs[];
+out GS { vec3 world; vec3 normal; vec2 uv; } gs;
+#ifdef NORMAL_MAPS
+in vec4 vsTangent[];
+out vec4 gsTangent;
+#endif
+#ifdef OBJECT_MOTION
 in vec3 vsPrevWorld[];
-flat in uint vsObjectId[];
 out vec3 gsPrevWorld;      // the surface's position last frame (per-object motion)
+#endif
+#ifdef OBJECT_IDS
+flat in uint vsObjectId[];
 flat out uint gsObjectId;
+#endif
 uniform int uFirstLayer;  // 0, or 1 for the second pass of depth peeling
 uniform int uLayerCount;  // 1 or 2
 void main() {
@@ -20,9 +28,15 @@ void main() {
             gs.world = vs[i].world;
             gs.normal = vs[i].normal;
             gs.uv = vs[i].uv;
+#ifdef NORMAL_MAPS
+            gsTangent = vsTangent[i];
+#endif
+#ifdef OBJECT_MOTION
             gsPrevWorld = vsPrevWorld[i];
+#endif
+#ifdef OBJECT_IDS
             gsObjectId = vsObjectId[i];
-            gs.tangent = vs[i].tangent;
+#endif
             gl_Position = uViewProj * vec4(vs[i].world, 1.0);
             EmitVertex();
         }

@@ -1,7 +1,9 @@
 // Where this pixel's surface was last frame, and how far it may be trusted (shared by reproject and temporal).
 uniform sampler2DArray uDepth;      // Depth 1/2 (layer 0 used)
 uniform sampler2D uLastDepthTex;    // Last Depth
+#ifdef OBJECT_MOTION
 uniform sampler2DArray uMotion;     // Motion (layer 0): previous - current world position of the pixel's surface
+#endif
 uniform float uFalloffStart;
 uniform float uFalloffEnd;
 uniform int uHistoryValid;  // 0 on the first frame and after a camera cut
@@ -13,7 +15,9 @@ float reprojectionWeight(ivec2 pix, out vec2 prevUV) {
     float d = texelFetch(uDepth, ivec3(pix, 0), 0).r;
     if (isSky(d)) return 0.0;
     vec3 P = worldFromDepth(vec2(pix) + 0.5, d, uInvViewProj);
+#ifdef OBJECT_MOTION
     P += texelFetch(uMotion, ivec3(pix, 0), 0).xyz;  // where this surface was last frame (moving objects)
+#endif
     vec4 pc = uPrevViewProj * vec4(P, 1.0);
     if (pc.w <= 0.0) return 0.0;
     prevUV = pc.xy / pc.w * 0.5 + 0.5;

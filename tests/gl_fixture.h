@@ -37,9 +37,17 @@ inline double meanChannel(const FloatImage& img, int c, int x0 = 0, int y0 = 0, 
 // Writes img to $DEEPGI_TEST_OUT/<name>.exr when that variable is set (for looking at test images).
 void dumpIfRequested(const std::string& name, const FloatImage& img);
 
+// Options of a renderer whose scene is edited live (the viewer's): Object ID and Motion written every frame.
+inline RendererOptions sceneEditing() {
+    RendererOptions o;
+    o.sceneEditing = true;
+    return o;
+}
+
 // A renderer over `scene` at w x h looking through the scene's camera `camera`.
-inline std::unique_ptr<Renderer> rendererFor(std::shared_ptr<Scene> scene, int w, int h, const std::string& camera) {
-    auto r = std::make_unique<Renderer>();
+inline std::unique_ptr<Renderer> rendererFor(std::shared_ptr<Scene> scene, int w, int h, const std::string& camera,
+                                             RendererOptions options = {}) {
+    auto r = std::make_unique<Renderer>(std::move(options));
     r->setScene(scene);
     r->resize(w, h);
     r->setCamera(selectCamera(*scene, camera));

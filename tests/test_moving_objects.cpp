@@ -111,7 +111,7 @@ TEST_F(GLTest, SlidingBoxIndirectLightHasNoGhost) {
     const int frames = 12, kWarm = 40, kHold = 30;
     for (bool objectMotion : {true, false}) {
         SlidingBox b = slidingBox();
-        auto moving = rendererFor(b.scene, kW, kH, "view");
+        auto moving = rendererFor(b.scene, kW, kH, "view", sceneEditing());
         const Settings s = settingsFor(*b.scene, objectMotion, GBufferGeneration::Predicted);
         double boxKept = 0.0;
         b.place(0);

@@ -112,7 +112,7 @@ TEST(SceneGraph, GltfLoadKeepsNodesNamesAndHierarchy) {
 TEST_F(GLTest, ObjectIdPickingFollowsMovesAndVisibility) {
     auto scene = floorAndBox();
     const int box = nodeNamed(*scene, "box"), floorNode = scene->parts[0].node;
-    auto renderer = rendererFor(scene, 64, 64, "top");
+    auto renderer = rendererFor(scene, 64, 64, "top", sceneEditing());
     Renderer& r = *renderer;
     Settings s;
     s.indirect = false;
@@ -165,7 +165,7 @@ TEST_F(GLTest, ShadowFollowsAMovedObject) {
     // Light travelling along (-1, -1, 0): the box (|x| < 0.3, height 0.6) shades the floor over x in [-0.9, -0.3].
     auto scene = floorAndBox(glm::vec3(-1.0f, -1.0f, 0.0f));
     const int box = nodeNamed(*scene, "box");
-    auto renderer = rendererFor(scene, 64, 64, "top");
+    auto renderer = rendererFor(scene, 64, 64, "top", sceneEditing());
     Renderer& r = *renderer;
     Settings s;
     s.indirect = false;
@@ -191,7 +191,7 @@ TEST_F(GLTest, ObjectIdBufferIsShownByTheBufferView) {
     const int box = nodeNamed(*scene, "box"), floorNode = scene->parts[0].node;
     // The camera sees sky above the horizon: look along the floor.
     scene->cameras[0].cameraToWorld = glm::inverse(glm::lookAt(glm::vec3(0, 0.5f, 2.5f), glm::vec3(0, 0.3f, 0), glm::vec3(0, 1, 0)));
-    auto renderer = rendererFor(scene, 64, 48, "top");
+    auto renderer = rendererFor(scene, 64, 48, "top", sceneEditing());
     Settings s;
     s.indirect = false;
     renderer->render(s);
@@ -213,6 +213,39 @@ TEST_F(GLTest, ObjectIdBufferIsShownByTheBufferView) {
     const TexelBlock t = BufferViewPass::readTexels(src, 32, 47 - boxY, 1, 1);
     ASSERT_EQ(t.channels, 1);
     EXPECT_EQ(int(t.values[0]), box + 1);
+}
+
+// A still scene pays for neither editing target: without RendererOptions::sceneEditing no Object ID is written and
+// no Motion until something moves, and the image is bit for bit the editing renderer's (the targets change what is
+// written, never what is seen). The first move adds Motion and keeps the temporal history.
+TEST_F(GLTest, StillSceneWritesNoEditingTargets) {
+    auto scene = floorAndBox();
+    auto plain = rendererFor(scene, 48, 48, "top"), editing = rendererFor(scene, 48, 48, "top", sceneEditing());
+    Settings s;
+    for (int f = 0; f < 3; ++f) {
+        plain->render(s);
+        editing->render(s);
+    }
+    EXPECT_FALSE(plain->textures().has("Object ID"));
+    EXPECT_FALSE(plain->textures().has("Motion"));
+    EXPECT_EQ(plain->objectAt(24, 24), -1) << "no picking without the Object ID target";
+    EXPECT_TRUE(editing->textures().has("Object ID"));
+    EXPECT_TRUE(editing->textures().has("Motion"));
+    for (const char* layer : {"Final Radiance", "Output Radiance", "Depth 2"}) {
+        const FloatImage a = plain->readLayer(layer), b = editing->readLayer(layer);
+        ASSERT_EQ(a.pixels.size(), b.pixels.size());
+        size_t differ = 0;
+        for (size_t i = 0; i < a.pixels.size(); ++i) differ += a.pixels[i] != b.pixels[i];
+        EXPECT_EQ(differ, 0u) << layer;
+    }
+    const int box = nodeNamed(*scene, "box");
+    scene->nodes[size_t(box)].local.translation += glm::vec3(0.05f, 0.0f, 0.0f);
+    scene->updateWorldTransforms();
+    plain->sceneChanged(SceneChange::Transforms);
+    plain->render(s);
+    EXPECT_TRUE(plain->textures().has("Motion")) << "objects move: their motion is written";
+    EXPECT_FALSE(plain->textures().has("Object ID"));
+    EXPECT_TRUE(plain->historyValid()) << "the first move keeps the temporal history";
 }
 
 // A light moved live: after sceneChanged(Lights) the next frame equals a fresh renderer's first frame of the new

@@ -23,11 +23,14 @@ void DeepGBufferPass::table(const PipelineConfig& c, PassTable& t) const {
     if (c.emission)
         t.write({"Emission", {"Emission 1", "Emission 2"}, GL_R11F_G11F_B10F, GL_TEXTURE_2D_ARRAY, SizeRule::screen(), 1,
                  MemoryGroup::Extra, Visualize::Radiance, "Emitted radiance of both layers (only for scenes with emissive materials)"});
-    // Scene editing (issue 14): which node each pixel shows, and how far its surface moved since last frame.
-    t.write({"Object ID", {"Object ID 1", "Object ID 2"}, GL_R32UI, GL_TEXTURE_2D_ARRAY, SizeRule::screen(), 1,
-             MemoryGroup::Extra, Visualize::ObjectId, "Node index + 1 of the surface of each layer (0 = sky): picking"});
-    t.write({"Motion", {"Motion 1", "Motion 2"}, GL_RGBA16F, GL_TEXTURE_2D_ARRAY, SizeRule::screen(), 1, MemoryGroup::Extra,
-             Visualize::Color, "World-space position change of each layer's surface since last frame (previous - current; moving objects)"});
+    // Scene editing (issue 14): which node each pixel shows, and how far its surface moved since last frame; only
+    // where a client picks, and once objects move (the two targets cost a still frame's G-buffer about a third).
+    if (c.objectIds)
+        t.write({"Object ID", {"Object ID 1", "Object ID 2"}, GL_R32UI, GL_TEXTURE_2D_ARRAY, SizeRule::screen(), 1,
+                 MemoryGroup::Extra, Visualize::ObjectId, "Node index + 1 of the surface of each layer (0 = sky): picking"});
+    if (c.objectMotion)
+        t.write({"Motion", {"Motion 1", "Motion 2"}, GL_RGBA16F, GL_TEXTURE_2D_ARRAY, SizeRule::screen(), 1, MemoryGroup::Extra,
+                 Visualize::Color, "World-space position change of each layer's surface since last frame (previous - current; moving objects)"});
     writeMaterialTextures(c, t);
     if (c.depthPeel)
         t.write({"Peel Depth", {"Peel Depth"}, GL_DEPTH_COMPONENT32, GL_TEXTURE_2D, SizeRule::screen(), 1,
@@ -57,6 +60,9 @@ void DeepGBufferPass::drawScene(FrameContext& ctx, int firstLayer, int layerCoun
         if (ctx.config.emission) defs.push_back("EMISSION");
         if (ctx.config.specular) defs.push_back("SPECULAR");
         if (ctx.config.occlusion) defs.push_back("OCCLUSION");
+        if (ctx.config.normalMaps) defs.push_back("NORMAL_MAPS");
+        if (ctx.config.objectIds) defs.push_back("OBJECT_IDS");
+        if (ctx.config.objectMotion) defs.push_back("OBJECT_MOTION");
         Program& prog = program_.get(ctx.shaders, {"deep_gbuffer.vert", "deep_gbuffer.geom", "deep_gbuffer.frag", "", defs});
         glUseProgram(prog.id());
         prog.firstLayer.set(firstLayer);
@@ -79,8 +85,8 @@ void DeepGBufferPass::execute(FrameContext& ctx) {
                                                       {GL_COLOR_ATTACHMENT0, ctx.texture("Albedo")},
                                                       {GL_COLOR_ATTACHMENT1, ctx.texture("Normal")}};
     if (ctx.config.emission) atts.push_back({GL_COLOR_ATTACHMENT2, ctx.texture("Emission")});
-    atts.push_back({GL_COLOR_ATTACHMENT5, ctx.texture("Object ID")});
-    atts.push_back({GL_COLOR_ATTACHMENT6, ctx.texture("Motion")});
+    if (ctx.config.objectIds) atts.push_back({GL_COLOR_ATTACHMENT5, ctx.texture("Object ID")});
+    if (ctx.config.objectMotion) atts.push_back({GL_COLOR_ATTACHMENT6, ctx.texture("Motion")});
     if (ctx.config.specular) atts.push_back({GL_COLOR_ATTACHMENT3, ctx.texture("Specular")});
     if (ctx.config.occlusion) atts.push_back({GL_COLOR_ATTACHMENT4, ctx.texture("Occlusion")});
     GLuint fbo = ctx.fbos.get(atts, "deep G-buffer");
@@ -95,8 +101,8 @@ void DeepGBufferPass::execute(FrameContext& ctx) {
     glClearBufferfv(GL_COLOR, 1, zero);
     if (ctx.config.emission) glClearBufferfv(GL_COLOR, 2, zero);
     const GLuint noObject[4] = {0, 0, 0, 0};
-    glClearBufferuiv(GL_COLOR, 5, noObject);
-    glClearBufferfv(GL_COLOR, 6, zero);
+    if (ctx.config.objectIds) glClearBufferuiv(GL_COLOR, 5, noObject);
+    if (ctx.config.objectMotion) glClearBufferfv(GL_COLOR, 6, zero);
     if (ctx.config.specular) glClearBufferfv(GL_COLOR, 3, zero);
     const float noOcclusion[4] = {1, 1, 1, 1};
     if (ctx.config.occlusion) glClearBufferfv(GL_COLOR, 4, noOcclusion);

@@ -28,6 +28,9 @@ struct PipelineConfig {
     bool emission = false;
     bool specular = false;     // some material reflects specularly (and material.diffuse_only is off): Specular
     bool occlusion = false;    // some material has an occlusion texture: Occlusion
+    bool normalMaps = false;   // some material has a normal texture: the G-buffer interpolates tangents
+    bool objectIds = false;    // the client picks objects (RendererOptions::sceneEditing): Object ID
+    bool objectMotion = false; // objects move (edited, animated) and gbuffer.object_motion is on: Motion
     bool indirect = true;
     bool seedComposite = false;
     bool blur = true;

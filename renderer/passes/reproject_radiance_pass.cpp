@@ -2,10 +2,15 @@
 
 namespace deepgi {
 
-void readReprojectionInputs(PassTable& t) {
+void readReprojectionInputs(const PipelineConfig& c, PassTable& t) {
     t.read("Depth", "uDepth").level(Levels::Base);
     t.read("Last Depth", "uLastDepthTex");
-    t.read("Motion", "uMotion");  // each surface's own motion (deep G-buffer pass)
+    if (c.objectMotion) t.read("Motion", "uMotion");  // each surface's own motion (deep G-buffer pass)
+}
+
+std::vector<std::string> reprojectionDefines(const PipelineConfig& c) {
+    if (c.objectMotion) return {"OBJECT_MOTION"};
+    return {};
 }
 
 void ReprojectionUniforms::set(const FrameContext& ctx) const {
@@ -16,7 +21,7 @@ void ReprojectionUniforms::set(const FrameContext& ctx) const {
 }
 
 void ReprojectRadiancePass::table(const PipelineConfig& c, PassTable& t) const {
-    readReprojectionInputs(t);
+    readReprojectionInputs(c, t);
     // Last frame's filtered irradiance: unblurred (temporal_first) or the final Output Radiance.
     t.history(c.temporalFirst ? "Temporal History" : "Output Radiance", "uHistory");
     t.write({"Reprojected Radiance", {"Reprojected Radiance"}, GL_R11F_G11F_B10F, GL_TEXTURE_2D, c.radiositySize(), 1,
@@ -24,7 +29,7 @@ void ReprojectRadiancePass::table(const PipelineConfig& c, PassTable& t) const {
 }
 
 void ReprojectRadiancePass::execute(FrameContext& ctx) {
-    Program& prog = program_.get(ctx.shaders, {"fullscreen.vert", "", "reproject_radiance.frag", "", {}});
+    Program& prog = program_.get(ctx.shaders, {"fullscreen.vert", "", "reproject_radiance.frag", "", reprojectionDefines(ctx.config)});
     prog.reprojection.set(ctx);
     ctx.bindSamplers(prog);
     GLuint fbo = ctx.fbos.get({{GL_COLOR_ATTACHMENT0, ctx.texture("Reprojected Radiance")}}, "reprojected radiance");

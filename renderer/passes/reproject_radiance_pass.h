@@ -25,7 +25,9 @@ struct ReprojectionUniforms {
     gl::Uniform<bool> historyValid;
 };
 // The textures reprojection.glsl samples: this frame's layer-1 depth and last frame's (Last Depth).
-void readReprojectionInputs(PassTable& t);
+void readReprojectionInputs(const PipelineConfig& c, PassTable& t);
+// Its shader defines: OBJECT_MOTION where the Motion texture exists (else the camera's motion alone).
+std::vector<std::string> reprojectionDefines(const PipelineConfig& c);
 
 struct ReprojectRadiancePass::Program : gl::Program {
     using gl::Program::Program;

@@ -9,7 +9,7 @@ TextureDecl radiosityScratch(const PipelineConfig& c) {
 }
 
 void TemporalBlendPass::table(const PipelineConfig& c, PassTable& t) const {
-    readReprojectionInputs(t);
+    readReprojectionInputs(c, t);
     t.read("Reprojected Radiance", "uReprojected");
     t.update("Output Radiance", "uCurrent").after(c.temporalFirst ? "" : "Bilateral blur");
     t.scratch(radiosityScratch(c));
@@ -21,7 +21,7 @@ void TemporalBlendPass::table(const PipelineConfig& c, PassTable& t) const {
 void TemporalBlendPass::execute(FrameContext& ctx) {
     const TemporalSettings& s = ctx.settings;
     const GLuint scratch = ctx.texture("Radiosity Scratch"), output = ctx.texture("Output Radiance");
-    Program& prog = program_.get(ctx.shaders, {"fullscreen.vert", "", "temporal_blend.frag", "", {}});
+    Program& prog = program_.get(ctx.shaders, {"fullscreen.vert", "", "temporal_blend.frag", "", reprojectionDefines(ctx.config)});
     prog.reprojection.set(ctx);
     prog.alpha.set(s.hysteresis);
     ctx.bindSamplers(prog);

@@ -195,6 +195,10 @@ struct Scene {
         for (const auto& m : materials) if (m.occluded()) return true;
         return false;
     }
+    bool hasNormalMaps() const {
+        for (const auto& m : materials) if (m.normalTexture >= 0) return true;
+        return false;
+    }
     bool hasEmission() const {
         for (const auto& m : materials) if (m.emissive()) return true;
         return false;
