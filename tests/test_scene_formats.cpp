@@ -24,6 +24,7 @@
 #include <sys/wait.h>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -735,4 +736,80 @@ TEST(SceneLoad, ProgressRisesToDone) {
         for (size_t i = 1; i < calls.size(); ++i) EXPECT_GE(calls[i].second, calls[i - 1].second) << path << " call " << i;
         EXPECT_GT(s.triangleCount(), 0u);
     }
+}
+
+// ---- Real public files (assets/public: other producers' files, unchanged, with their licences) -------------------
+
+namespace {
+
+const std::string kPublicAssets = std::string(DEEPGI_ASSET_DIR) + "/public";
+
+// The corner uvs of a quad of raw uvs [0, s]^2 under KHR_texture_transform: translation x rotation x scale, the
+// rotation counter-clockwise in glTF's V-down uv space (u' = cos u + sin v, v' = -sin u + cos v). That is the
+// direction the sample model's markers check, and Blender's, Babylon.js's and three.js's; the GLSL listing in the
+// extension's text has the opposite sign (KhronosGroup/glTF issue 1563). Following that listing, deepgi's render
+// of this file pointed the rotation quad's arrow at the red "opposite direction" marker.
+std::vector<glm::vec2> specTransformedCorners(float s, glm::vec2 offset, float rotation, glm::vec2 scale) {
+    std::vector<glm::vec2> out;
+    for (glm::vec2 uv : {glm::vec2(0, 0), glm::vec2(s, 0), glm::vec2(0, s), glm::vec2(s, s)}) {
+        const glm::vec2 k = uv * scale;
+        const float c = std::cos(rotation), n = std::sin(rotation);
+        out.push_back(glm::vec2(c * k.x + n * k.y, -n * k.x + c * k.y) + offset);
+    }
+    return out;
+}
+
+}  // namespace
+
+// Box_Draco.glb (Draco's own tools, KHR_draco_mesh_compression required) decodes to the box of the uncompressed
+// Box.glb: the same 12 triangles, each vertex within Draco's quantization of one of the original's.
+TEST(GltfExtensions, PublicAssetDracoBoxEqualsTheUncompressedBox) {
+    const Scene plain = loadGltf(kPublicAssets + "/draco_box/Box.glb");
+    const Scene draco = loadGltf(kPublicAssets + "/draco_box/Box_Draco.glb");
+    ASSERT_EQ(plain.parts.size(), 1u);
+    ASSERT_EQ(draco.parts.size(), 1u);
+    EXPECT_EQ(plain.triangleCount(), 12u) << "the unit box";
+    EXPECT_EQ(draco.triangleCount(), plain.triangleCount());
+    // The box spans 1 m: 11-bit positions are within 1 mm, normals of a box's faces within 1 %.
+    expectSameVertices(plain.parts[0], draco.parts[0], 1e-3f, 1e-2f, 1.0f);
+    expectSameVertices(draco.parts[0], plain.parts[0], 1e-3f, 1e-2f, 1.0f);
+    EXPECT_NEAR(triangleArea(draco.parts[0]), 6.0, 6e-3) << "six unit faces";
+    EXPECT_NEAR(triangleArea(plain.parts[0]), 6.0, 1e-6);
+}
+
+// Microsoft's TextureTransformTest: each quad's uvs after load are its raw uvs under the transform its material
+// names, computed with the specification's matrix from the values its README states (offsets (0.5, 0), (0, 0.5),
+// (0.5, 0.5) on uvs [0, 0.5]^2; rotation 22.5 degrees, scale 1.5, and offset (-0.2, -0.1) + rotation 0.3 + scale
+// 1.5 on uvs [0, 1]^2). No warning: the extension is supported, not ignored.
+TEST(GltfExtensions, PublicAssetTextureTransformTestQuadsCarryTheSpecTransform) {
+    const Scene s = loadGltf(kPublicAssets + "/texture_transform_test/TextureTransformTest.gltf");
+    EXPECT_FALSE(hasWarning(s, "KHR_texture_transform"));
+    const float r225 = 0.39269908169872414f;
+    const std::map<std::string, std::vector<glm::vec2>> expected = {
+        {"Offset U", specTransformedCorners(0.5f, {0.5f, 0.0f}, 0.0f, {1, 1})},
+        {"Offset V", specTransformedCorners(0.5f, {0.0f, 0.5f}, 0.0f, {1, 1})},
+        {"Offset UV", specTransformedCorners(0.5f, {0.5f, 0.5f}, 0.0f, {1, 1})},
+        {"Rotation", specTransformedCorners(1.0f, {0, 0}, r225, {1, 1})},
+        {"Scale", specTransformedCorners(1.0f, {0, 0}, 0.0f, {1.5f, 1.5f})},
+        {"All", specTransformedCorners(1.0f, {-0.2f, -0.1f}, 0.3f, {1.5f, 1.5f})},
+    };
+    int checked = 0;
+    for (const MeshPart& p : s.parts) {
+        ASSERT_GE(p.material, 0);
+        const auto it = expected.find(s.materials[size_t(p.material)].name);
+        if (it == expected.end()) continue;  // the markers: untransformed
+        ++checked;
+        EXPECT_EQ(p.indices.size(), 6u) << it->first << ": two triangles";
+        std::vector<bool> cornerSeen(4, false);
+        for (const Vertex& v : p.vertices) {
+            size_t best = 0;
+            for (size_t k = 1; k < 4; ++k)
+                if (glm::length(v.uv - it->second[k]) < glm::length(v.uv - it->second[best])) best = k;
+            EXPECT_LT(glm::length(v.uv - it->second[best]), 1e-5f)
+                << it->first << ": uv (" << v.uv.x << ", " << v.uv.y << ") is no corner of the spec's quad";
+            cornerSeen[best] = true;
+        }
+        for (size_t k = 0; k < 4; ++k) EXPECT_TRUE(cornerSeen[k]) << it->first << ": corner " << k << " missing";
+    }
+    EXPECT_EQ(checked, 6) << "six transformed quads";
 }

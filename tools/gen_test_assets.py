@@ -15,8 +15,9 @@ writes
                                 transform, normalized BYTE normals, normalized USHORT texture coordinates
     texture_transform/transformed.gltf  a quad whose UVs span (0,0)-(0.5,0.5), KHR_texture_transform
                                 (offset, rotation, scale, texCoord 1) on its base-colour texture
-    texture_transform/baked.gltf  the same quad with the transform applied to TEXCOORD_0 here (the spec's matrix,
-                                computed in this script), no extension: the independent answer
+    texture_transform/baked.gltf  the same quad with the transform applied to TEXCOORD_0 here (the rotation
+                                as the sample model TextureTransformTest checks it, computed in this script), no
+                                extension: the independent answer
     materials/normal_wall.gltf  a 4 x 4 m wall (z = 0, facing +Z, u along +X, v down) under a grazing directional
                                 light (80 deg from the normal, from +X, irradiance 3 W/m^2 facing it) with a constant
                                 normal texture tilting the normal 30 deg towards +X (tangent space (sin 30, 0, cos 30)),
@@ -262,11 +263,13 @@ def quat_x(angle):
 
 
 def transform_matrix(offset, rotation, scale):
-    """KHR_texture_transform's translation * rotation * scale as rows of a 3x3 matrix (the spec's GLSL is
-    column-major: its rotation columns are (cos, sin, 0) and (-sin, cos, 0))."""
+    """KHR_texture_transform's translation * rotation * scale as rows of a 3x3 matrix. The rotation turns the uvs
+    counter-clockwise in glTF's V-down uv space, u' = cos u + sin v, v' = -sin u + cos v: what the sample model
+    TextureTransformTest, Blender, Babylon.js and three.js do. The spec's GLSL listing has the opposite sign
+    (KhronosGroup/glTF issue 1563)."""
     c, s = math.cos(rotation), math.sin(rotation)
     t = [[1, 0, offset[0]], [0, 1, offset[1]], [0, 0, 1]]
-    r = [[c, -s, 0], [s, c, 0], [0, 0, 1]]
+    r = [[c, s, 0], [-s, c, 0], [0, 0, 1]]
     k = [[scale[0], 0, 0], [0, scale[1], 0], [0, 0, 1]]
 
     def mm(a, b):

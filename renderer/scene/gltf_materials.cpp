@@ -137,10 +137,12 @@ GltfReader::UvSet GltfReader::textureUv(int texCoord, const tinygltf::ExtensionM
         else ok = false;
     }
     if (!ok) warn(user + ": KHR_texture_transform has a missing or invalid value; those values use their defaults");
-    // The extension's matrix, translation * rotation * scale, column by column as its GLSL writes it.
+    // The extension's matrix, translation * rotation * scale (columns). The rotation is counter-clockwise in glTF's
+    // V-down uv space, u' = cos u + sin v, as the sample model TextureTransformTest and Blender, Babylon.js and
+    // three.js have it; the spec's GLSL listing has the opposite sign (KhronosGroup/glTF issue 1563).
     const float c = float(std::cos(rotation)), s = float(std::sin(rotation));
     const glm::mat3 T(glm::vec3(1, 0, 0), glm::vec3(0, 1, 0), glm::vec3(offset, 1));
-    const glm::mat3 R(glm::vec3(c, s, 0), glm::vec3(-s, c, 0), glm::vec3(0, 0, 1));
+    const glm::mat3 R(glm::vec3(c, -s, 0), glm::vec3(s, c, 0), glm::vec3(0, 0, 1));
     const glm::mat3 S(glm::vec3(scale.x, 0, 0), glm::vec3(0, scale.y, 0), glm::vec3(0, 0, 1));
     u.transform = T * R * S;
     return u;
