@@ -73,7 +73,8 @@ FloatImage renderDeepgi(const std::shared_ptr<Scene>& scene, Settings s, int w, 
 // and the probes together must converge to the truth as taps grow (issue 9: <= 10 % where everything is in view),
 // and more taps must not make it worse.
 // Disabled: today 26.6 / 25.1 / 25.0 % at 8 / 14 / 30 taps, ratio of means 1.20 / 1.19 / 1.19 (too bright, flat in
-// the taps: the error does not rise with them); BENCHMARKS.md "Session 3" has the figures and what is left.
+// the taps: the error does not rise with them); BENCHMARKS.md "Session 3" has the figures and what is left, and
+// "Session 4: where the one-bounce excess comes from" splits it into probe bias and the fill's double count.
 TEST_F(GLTest, DISABLED_OneBounceInViewMatchesThePathTracer) {
     const auto scene = openBoxInView();
     const int W = 160, H = 96;
