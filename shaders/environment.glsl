@@ -44,22 +44,6 @@ vec3 environmentBackdrop(vec2 fragCoord) {
 #ifdef DEEPGI_SKY
 uniform sampler2D uProbeSky;
 
-// probeIrradianceWeighted()'s probes and weights (probeCell, probeCorner in probe_volume.glsl) over the sky atlas;
-// C++: ProbeVolume::skyIrradiance().
-vec3 probeSkyIrradiance(vec3 X, vec3 n) {
-    ivec3 base;
-    vec3 alpha, biased;
-    if (!probeCell(X, n, base, alpha, biased)) return vec3(0.0);
-    vec2 skySize = vec2(textureSize(uProbeSky, 0)), depthSize = vec2(textureSize(uProbeDepth, 0));
-    vec3 sum = vec3(0.0);
-    float total = 0.0;
-    for (int i = 0; i < 8; ++i) {
-        float weight;
-        int probe = probeCorner(i, base, alpha, X, n, biased, depthSize, weight);
-        if (probe < 0) continue;
-        sum += weight * texture(uProbeSky, probeAtlasUv(probe, uProbeTexels.x, n, skySize)).rgb;
-        total += weight;
-    }
-    return total > 0.0 ? sum / total : vec3(0.0);
-}
+// probeIrradianceWeighted()'s probes and weights over the sky atlas; C++: ProbeVolume::skyIrradiance().
+vec3 probeSkyIrradiance(vec3 X, vec3 n) { return probeAtlasWeighted(uProbeSky, X, n).rgb; }
 #endif

@@ -122,22 +122,26 @@ int probeCorner(int i, ivec3 base, vec3 alpha, vec3 X, vec3 n, vec3 biased, vec2
     return probe;
 }
 
-vec4 probeIrradianceWeighted(vec3 X, vec3 n) {
+// The 8 probes' weighted mean of an atlas laid out as the irradiance one (irradiance, sky), with the weights' sum in
+// w; C++: weightedAtlasIrradiance over probeWeights.
+vec4 probeAtlasWeighted(sampler2D atlas, vec3 X, vec3 n) {
     ivec3 base;
     vec3 alpha, biased;
     if (!probeCell(X, n, base, alpha, biased)) return vec4(0.0);
-    vec2 irrSize = vec2(textureSize(uProbeIrradiance, 0)), depthSize = vec2(textureSize(uProbeDepth, 0));
+    vec2 atlasSize = vec2(textureSize(atlas, 0)), depthSize = vec2(textureSize(uProbeDepth, 0));
     vec3 sum = vec3(0.0);
     float total = 0.0;
     for (int i = 0; i < 8; ++i) {
         float weight;
         int probe = probeCorner(i, base, alpha, X, n, biased, depthSize, weight);
         if (probe < 0) continue;
-        sum += weight * texture(uProbeIrradiance, probeAtlasUv(probe, uProbeTexels.x, n, irrSize)).rgb;
+        sum += weight * texture(atlas, probeAtlasUv(probe, uProbeTexels.x, n, atlasSize)).rgb;
         total += weight;
     }
     return total > 0.0 ? vec4(sum / total, total) : vec4(0.0);
 }
+
+vec4 probeIrradianceWeighted(vec3 X, vec3 n) { return probeAtlasWeighted(uProbeIrradiance, X, n); }
 
 vec3 probeIrradiance(vec3 X, vec3 n) { return probeIrradianceWeighted(X, n).rgb; }
 

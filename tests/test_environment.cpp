@@ -2,6 +2,7 @@
 // sampling, the path tracer under a sky against analytic answers, and the real-time renderer against those.
 // One file over 500 lines: the tests share the scenes and helpers and prove one feature end to end.
 #include "gl_fixture.h"
+#include "probe_glsl_harness.h"
 
 #include "renderer/core/image_io.h"
 #include "renderer/probes/probe_volume.h"
@@ -20,6 +21,9 @@
 #include <sstream>
 
 using namespace deepgi;
+using deepgi::test::evaluateAtPoints;
+using deepgi::test::probeAtlasTextures;
+using deepgi::test::readShaderSource;
 using namespace deepgi::procedural;
 using deepgi::test::GLTest;
 namespace fs = std::filesystem;
@@ -532,31 +536,6 @@ TEST(EnvironmentCli, RenderAndReferenceTakeTheMap) {
 
 // ---- The GLSL sky lookup against the C++ one ----------------------------------------------------------------
 
-namespace {
-
-std::string readShader(const std::string& name) {
-    std::ifstream f(std::string(DEEPGI_SHADER_DIR) + "/" + name);
-    std::stringstream ss;
-    ss << f.rdbuf();
-    return ss.str();
-}
-
-GLuint compileShader(GLenum type, const std::string& src) {
-    GLuint sh = glCreateShader(type);
-    const char* p = src.c_str();
-    glShaderSource(sh, 1, &p, nullptr);
-    glCompileShader(sh);
-    GLint ok = 0;
-    glGetShaderiv(sh, GL_COMPILE_STATUS, &ok);
-    if (!ok) {
-        char log[4096];
-        glGetShaderInfoLog(sh, sizeof log, nullptr, log);
-        ADD_FAILURE() << log;
-    }
-    return sh;
-}
-
-}  // namespace
 
 // shaders/environment.glsl's probeSkyIrradiance() against ProbeVolume::skyIrradiance() on the open-sky asset
 // under the test map: within 2% (GL's bilinear filtering weights have 8 bits of fraction).
@@ -579,16 +558,7 @@ TEST_F(GLTest, SkyShaderMatchesTheCpp) {
     std::vector<ProbeTextureDesc> descs = v.textures();
     descs.resize(3);  // irradiance, depth, data: what the sky lookup reads (not the radiance harmonics)
     descs.push_back(v.skyTexture());
-    std::vector<gl::TextureHandle> tex;
-    for (const ProbeTextureDesc& d : descs) {
-        tex.push_back(gl::createTexture(GL_TEXTURE_2D, d.name));
-        glTextureStorage2D(tex.back().id(), 1, d.internalFormat, d.width, d.height);
-        const GLenum filter = d.name == "Probe Data" ? GL_NEAREST : GL_LINEAR;
-        glTextureParameteri(tex.back().id(), GL_TEXTURE_MIN_FILTER, filter);
-        glTextureParameteri(tex.back().id(), GL_TEXTURE_MAG_FILTER, filter);
-        glTextureParameteri(tex.back().id(), GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
-        glTextureParameteri(tex.back().id(), GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
-    }
+    std::vector<gl::TextureHandle> tex = probeAtlasTextures(descs);
     v.uploadSkyTexture(tex[3].id(), true);
     v.uploadTextures(tex[0].id(), tex[1].id(), tex[2].id(), true);
     gl::BufferHandle ubo = gl::createBuffer("probe uniforms");
@@ -599,37 +569,12 @@ TEST_F(GLTest, SkyShaderMatchesTheCpp) {
     glBindTextureUnit(3, tex[1].id());
     glBindTextureUnit(5, tex[2].id());
     glBindTextureUnit(6, tex[3].id());
-    const std::string fs = "#version 450 core\n#define PROBE_VOLUME_FIXED_UNITS\n#define DEEPGI_SKY\n" +
-                           readShader("common.glsl") + readShader("probe_volume.glsl") + readShader("environment.glsl") +
-                           "uniform vec3 uPoints[" + std::to_string(N) + "];\nuniform vec3 uNormals[" + std::to_string(N) +
-                           "];\nout vec4 oColor;\nvoid main() { int i = int(gl_FragCoord.x);\n"
-                           "  oColor = vec4(probeSkyIrradiance(uPoints[i], uNormals[i]), 1.0); }\n";
-    GLuint prog = glCreateProgram();
-    GLuint v1 = compileShader(GL_VERTEX_SHADER, readShader("fullscreen.vert")), f1 = compileShader(GL_FRAGMENT_SHADER, fs);
-    glAttachShader(prog, v1);
-    glAttachShader(prog, f1);
-    glLinkProgram(prog);
-    GLint linked = 0;
-    glGetProgramiv(prog, GL_LINK_STATUS, &linked);
-    ASSERT_TRUE(linked);
-    glProgramUniform1i(prog, glGetUniformLocation(prog, "uProbeSky"), 6);
-    glProgramUniform3fv(prog, glGetUniformLocation(prog, "uPoints"), N, &ps[0].x);
-    glProgramUniform3fv(prog, glGetUniformLocation(prog, "uNormals"), N, &ns[0].x);
-    gl::TextureHandle target = gl::createTexture(GL_TEXTURE_2D, "sky test target");
-    glTextureStorage2D(target.id(), 1, GL_RGBA32F, N, 1);
-    gl::FramebufferHandle fbo = gl::createFramebuffer("sky test");
-    glNamedFramebufferTexture(fbo.id(), GL_COLOR_ATTACHMENT0, target.id(), 0);
-    glBindFramebuffer(GL_FRAMEBUFFER, fbo.id());
-    glViewport(0, 0, N, 1);
-    gl::VertexArrayHandle vao = gl::createVertexArray("sky test");
-    glBindVertexArray(vao.id());
-    glUseProgram(prog);
-    glDrawArrays(GL_TRIANGLES, 0, 3);
-    std::vector<float> out(size_t(N) * 4);
-    glGetTextureImage(target.id(), 0, GL_RGBA, GL_FLOAT, GLsizei(out.size() * sizeof(float)), out.data());
-    glDeleteProgram(prog);
-    glDeleteShader(v1);
-    glDeleteShader(f1);
+    const std::vector<float> out = evaluateAtPoints(
+        "#version 450 core\n#define PROBE_VOLUME_FIXED_UNITS\n#define DEEPGI_SKY\n" + readShaderSource("common.glsl") +
+            readShaderSource("probe_volume.glsl") + readShaderSource("environment.glsl"),
+        "vec4(probeSkyIrradiance(uPoints[i], uNormals[i]), 1.0)", ps, ns,
+        [](GLuint prog) { glProgramUniform1i(prog, glGetUniformLocation(prog, "uProbeSky"), 6); });
+    ASSERT_EQ(out.size(), size_t(N) * 4);
     int lit = 0;
     for (int i = 0; i < N; ++i) {
         const glm::vec3 E = v.skyIrradiance(ps[i], ns[i]);

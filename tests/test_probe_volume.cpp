@@ -1,6 +1,7 @@
 // The world-space irradiance probes (renderer/probes/probe_volume.h) against exact answers and the path tracer.
 // One file over 500 lines: the tests share its scenes and helpers and all prove one class.
 #include "gl_fixture.h"
+#include "probe_glsl_harness.h"
 
 #include "renderer/probes/probe_volume.h"
 #include "renderer/reference/path_tracer.h"
@@ -15,6 +16,9 @@
 #include <thread>
 
 using namespace deepgi;
+using deepgi::test::evaluateAtPoints;
+using deepgi::test::probeAtlasTextures;
+using deepgi::test::readShaderSource;
 using namespace deepgi::procedural;
 
 namespace {
@@ -491,31 +495,6 @@ TEST(ProbeVolume, GridFitsTheBoundsWithinTheCount) {
     EXPECT_GE(g.count(), s.probeMaxCount / 2);
 }
 
-namespace {
-
-std::string readText(const std::string& path) {
-    std::ifstream f(path);
-    std::stringstream ss;
-    ss << f.rdbuf();
-    return ss.str();
-}
-
-GLuint compile(GLenum type, const std::string& src) {
-    GLuint sh = glCreateShader(type);
-    const char* p = src.c_str();
-    glShaderSource(sh, 1, &p, nullptr);
-    glCompileShader(sh);
-    GLint ok = 0;
-    glGetShaderiv(sh, GL_COMPILE_STATUS, &ok);
-    if (!ok) {
-        char log[4096];
-        glGetShaderInfoLog(sh, sizeof log, nullptr, log);
-        ADD_FAILURE() << log;
-    }
-    return sh;
-}
-
-}  // namespace
 
 // The GLSL probeIrradiance() equals ProbeVolume::irradiance() (within llvmpipe's 8-bit filtering weights).
 TEST_F(GLTest, ProbeVolumeShaderMatchesTheCpp) {
@@ -536,16 +515,7 @@ TEST_F(GLTest, ProbeVolumeShaderMatchesTheCpp) {
     }
     const int N = int(ps.size());
 
-    std::vector<gl::TextureHandle> tex;
-    for (const ProbeTextureDesc& d : v.textures()) {
-        tex.push_back(gl::createTexture(GL_TEXTURE_2D, d.name));
-        glTextureStorage2D(tex.back().id(), 1, d.internalFormat, d.width, d.height);
-        const GLenum filter = d.name == "Probe Data" ? GL_NEAREST : GL_LINEAR;
-        glTextureParameteri(tex.back().id(), GL_TEXTURE_MIN_FILTER, filter);
-        glTextureParameteri(tex.back().id(), GL_TEXTURE_MAG_FILTER, filter);
-        glTextureParameteri(tex.back().id(), GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
-        glTextureParameteri(tex.back().id(), GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
-    }
+    std::vector<gl::TextureHandle> tex = probeAtlasTextures(v.textures());
     v.uploadTextures(tex[0].id(), tex[1].id(), tex[2].id(), tex[3].id(), false);
     gl::BufferHandle ubo = gl::createBuffer("probe uniforms");
     glNamedBufferStorage(ubo.id(), sizeof(ProbeVolumeUniforms), nullptr, GL_DYNAMIC_STORAGE_BIT);
@@ -555,40 +525,11 @@ TEST_F(GLTest, ProbeVolumeShaderMatchesTheCpp) {
     glBindTextureUnit(3, tex[1].id());
     glBindTextureUnit(5, tex[2].id());
 
-    const std::string lib = readText(std::string(DEEPGI_SHADER_DIR) + "/probe_volume.glsl");
+    const std::string lib = readShaderSource("probe_volume.glsl");
     ASSERT_FALSE(lib.empty());
-    const std::string fs = "#version 450 core\n#define PROBE_VOLUME_FIXED_UNITS\n" + lib +
-                           "uniform vec3 uPoints[" + std::to_string(N) + "];\nuniform vec3 uNormals[" +
-                           std::to_string(N) +
-                           "];\nout vec4 oColor;\nvoid main() { int i = int(gl_FragCoord.x);\n"
-                           "  oColor = probeIrradianceWeighted(uPoints[i], uNormals[i]); }\n";
-    const std::string vs = readText(std::string(DEEPGI_SHADER_DIR) + "/fullscreen.vert");
-    GLuint prog = glCreateProgram();
-    GLuint v1 = compile(GL_VERTEX_SHADER, vs), f1 = compile(GL_FRAGMENT_SHADER, fs);
-    glAttachShader(prog, v1);
-    glAttachShader(prog, f1);
-    glLinkProgram(prog);
-    GLint linked = 0;
-    glGetProgramiv(prog, GL_LINK_STATUS, &linked);
-    ASSERT_TRUE(linked);
-    glProgramUniform3fv(prog, glGetUniformLocation(prog, "uPoints"), N, &ps[0].x);
-    glProgramUniform3fv(prog, glGetUniformLocation(prog, "uNormals"), N, &ns[0].x);
-
-    gl::TextureHandle target = gl::createTexture(GL_TEXTURE_2D, "probe test target");
-    glTextureStorage2D(target.id(), 1, GL_RGBA32F, N, 1);
-    gl::FramebufferHandle fbo = gl::createFramebuffer("probe test");
-    glNamedFramebufferTexture(fbo.id(), GL_COLOR_ATTACHMENT0, target.id(), 0);
-    glBindFramebuffer(GL_FRAMEBUFFER, fbo.id());
-    glViewport(0, 0, N, 1);
-    gl::VertexArrayHandle vao = gl::createVertexArray("probe test");
-    glBindVertexArray(vao.id());
-    glUseProgram(prog);
-    glDrawArrays(GL_TRIANGLES, 0, 3);
-    std::vector<float> out(size_t(N) * 4);
-    glGetTextureImage(target.id(), 0, GL_RGBA, GL_FLOAT, GLsizei(out.size() * sizeof(float)), out.data());
-    glDeleteProgram(prog);
-    glDeleteShader(v1);
-    glDeleteShader(f1);
+    const std::vector<float> out = evaluateAtPoints("#version 450 core\n#define PROBE_VOLUME_FIXED_UNITS\n" + lib,
+                                                    "probeIrradianceWeighted(uPoints[i], uNormals[i])", ps, ns);
+    ASSERT_EQ(out.size(), size_t(N) * 4);
 
     float worst = 0.0f;
     int lit = 0;

@@ -130,6 +130,8 @@ uint32_t le32(const unsigned char* p) {
     return uint32_t(p[0]) | (uint32_t(p[1]) << 8) | (uint32_t(p[2]) << 16) | (uint32_t(p[3]) << 24);
 }
 
+Transform localTransform(const tinygltf::Node& n, bool* sheared);
+
 glm::mat4 localMatrix(const tinygltf::Node& n) {
     if (n.matrix.size() == 16) {
         glm::mat4 m;
@@ -137,25 +139,11 @@ glm::mat4 localMatrix(const tinygltf::Node& n) {
             for (int r = 0; r < 4; ++r) m[c][r] = float(n.matrix[size_t(c * 4 + r)]);
         return m;
     }
-    glm::mat4 t(1.0f), r(1.0f), s(1.0f);
-    if (n.translation.size() == 3)
-        t = glm::translate(glm::mat4(1.0f), glm::vec3(float(n.translation[0]), float(n.translation[1]),
-                                                      float(n.translation[2])));
-    if (n.rotation.size() == 4) {
-        glm::quat q;
-        q.x = float(n.rotation[0]);
-        q.y = float(n.rotation[1]);
-        q.z = float(n.rotation[2]);
-        q.w = float(n.rotation[3]);
-        const float len = glm::length(q);
-        if (std::isfinite(len) && len > 0.0f) r = glm::mat4_cast(q / len);
-    }
-    if (n.scale.size() == 3)
-        s = glm::scale(glm::mat4(1.0f), glm::vec3(float(n.scale[0]), float(n.scale[1]), float(n.scale[2])));
-    return t * r * s;
+    bool sheared = false;  // only a matrix can be sheared
+    return localTransform(n, &sheared).matrix();  // the same products as Transform::matrix(), bit for bit
 }
 
-// The node's local transform as TRS: the file's own TRS (rotation normalised as localMatrix does), or its matrix
+// The node's local transform as TRS: the file's own TRS (rotation normalised), or its matrix
 // decomposed (a sheared matrix loses its shear: *sheared is set).
 Transform localTransform(const tinygltf::Node& n, bool* sheared) {
     Transform t;
