@@ -3,6 +3,7 @@
 // Each test writes a script into a temp folder, runs the built binary under xvfb-run and reads the PNGs back.
 #include "renderer/core/image_compare.h"
 #include "renderer/core/image_io.h"
+#include "viewer_fixture.h"
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -30,21 +31,9 @@ struct ViewerRun {
     std::string log;
 };
 
-class Viewer : public ::testing::Test {
+class Viewer : public deepgi::test::ViewerTestFolder {
 protected:
-    void SetUp() override {
-        ASSERT_EQ(std::system("command -v xvfb-run > /dev/null 2>&1"), 0)
-            << "xvfb-run is missing: install xvfb and xauth (tools/install-deps.sh)";
-        const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-        dir_ = fs::temp_directory_path() / ("deepgi_viewer_" + std::string(info->name()) + "_" + std::to_string(::getpid()));
-        fs::remove_all(dir_);
-        fs::create_directories(dir_);
-    }
-    void TearDown() override {
-        if (!HasFailure()) fs::remove_all(dir_);
-        else std::fprintf(stderr, "viewer test files kept in %s\n", dir_.c_str());
-    }
-    std::string path(const std::string& name) const { return (dir_ / name).string(); }
+    Viewer() : ViewerTestFolder("deepgi_viewer_") {}
 
     // These tests check the viewer's mechanics on frames that must stay still: here the probe volume (which converges
     // over its first updates; tests/test_probe_volume.cpp covers it) updates every probe each frame and settles
@@ -84,7 +73,6 @@ protected:
         EXPECT_EQ(img.height, kH);
         return img;
     }
-    fs::path dir_;
 };
 
 // The viewport with the sidebar hidden, below the header and the info line, above the status line.

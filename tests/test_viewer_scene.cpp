@@ -4,6 +4,7 @@
 // default sun turned on the N panel's sphere, File > Save As (and its error), the timeline. Each test writes a
 // script and runs the built binary under xvfb-run, as tests/test_viewer.cpp does.
 #include "renderer/core/image_io.h"
+#include "viewer_fixture.h"
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -30,20 +31,9 @@ namespace {
 const int kW = 480, kH = 270;
 const std::string kCornell = std::string(DEEPGI_ASSET_DIR) + "/cornell_box/cornell_box.gltf";
 
-class ViewerEdit : public ::testing::Test {
+class ViewerEdit : public deepgi::test::ViewerTestFolder {
 protected:
-    void SetUp() override {
-        ASSERT_EQ(std::system("command -v xvfb-run > /dev/null 2>&1"), 0) << "xvfb-run is missing (tools/install-deps.sh)";
-        const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-        dir_ = fs::temp_directory_path() / ("deepgi_viewer_edit_" + std::string(info->name()) + "_" + std::to_string(::getpid()));
-        fs::remove_all(dir_);
-        fs::create_directories(dir_);
-    }
-    void TearDown() override {
-        if (!HasFailure()) fs::remove_all(dir_);
-        else std::fprintf(stderr, "viewer test files kept in %s\n", dir_.c_str());
-    }
-    std::string path(const std::string& name) const { return (dir_ / name).string(); }
+    ViewerEdit() : ViewerTestFolder("deepgi_viewer_edit_") {}
 
     // Runs `deepgi view` on `scene` with the script; returns the exit status, the log in log_.
     int view(const std::string& script, const std::string& scene = kCornell) {
@@ -72,7 +62,6 @@ protected:
         return j;
     }
     deepgi::FloatImage shot(const std::string& name) { return deepgi::readImage(path(name)); }
-    fs::path dir_;
     std::string log_;
 };
 
