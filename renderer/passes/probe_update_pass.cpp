@@ -47,6 +47,7 @@ void ProbeUpdatePass::execute(FrameContext& ctx) {
         const void* map = ctx.environment;
         key = fnv1a(key, &es.skyRadiance, sizeof(es.skyRadiance));
         key = fnv1a(key, &es.environmentIntensity, sizeof(es.environmentIntensity));
+        key = fnv1a(key, &es.environmentRotation, sizeof(es.environmentRotation));
         key = fnv1a(key, &map, sizeof(map));
     }
     key |= 1u;

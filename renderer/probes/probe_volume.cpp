@@ -432,12 +432,14 @@ ProbeUpdateStats ProbeVolume::update(const Settings& s) {
     // importance-sampled rays of its own (an absolute estimate: c x L / pdf), skySamples of them per probe.
     const glm::vec3 uniformSky(std::max(0.0f, s.skyRadiance) * std::max(0.0f, s.environmentIntensity));
     const bool skyMap = sky && scene_.environment != nullptr;
-    if (skyMap && (skyMapKey_ != scene_.environment.get() || skyMapIntensity_ != s.environmentIntensity)) {
+    if (skyMap && (skyMapKey_ != scene_.environment.get() || skyMapIntensity_ != s.environmentIntensity ||
+                   skyMapRotation_ != s.environmentRotation)) {
         Settings mapOnly = s;
         mapOnly.skyRadiance = 0.0f;
         skyMapSampler_ = std::make_shared<EnvironmentLight>(scene_.environment.get(), mapOnly, true);
         skyMapKey_ = scene_.environment.get();
         skyMapIntensity_ = s.environmentIntensity;
+        skyMapRotation_ = s.environmentRotation;
     }
     const int skySamples = skyMap && skyMapSampler_->sampled() ? std::max(16, raysPerProbe / 4) : 0;
     const glm::mat3 rotation = randomRotation(seed_, updateIndex_);

@@ -215,6 +215,7 @@ private:
     std::shared_ptr<const EnvironmentLight> skyMapSampler_;
     const void* skyMapKey_ = nullptr;
     float skyMapIntensity_ = -1.0f;
+    float skyMapRotation_ = 0.0f;
     struct TexelDirections {  // interior texel directions, row-major per tile, as arrays for SIMD loops
         std::vector<float> x, y, z;  // padded with zero vectors to a multiple of 8
         size_t count = 0;            // real texels
