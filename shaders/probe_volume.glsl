@@ -22,7 +22,7 @@
 //   sampler2D uProbeData        unit PROBE_DATA_UNIT (default 5): "Probe Data", RGBA32F, one texel per probe,
 //                               read with texelFetch (xyz offset, w state: > 0.5 = active)
 //   sampler2D uProbeRadiance    unit PROBE_RADIANCE_UNIT (default 6): "Probe Radiance", RGBA32F, tiles of (R+2)^2
-//                               texels (R = uProbeTexels.w), GL_LINEAR, clamp to edge: the radiance arriving per
+//                               texels (R = uProbeTexels.w), read with texelFetch: the radiance arriving per
 //                               direction; only probeRadianceAt() reads it
 #ifndef PROBE_VOLUME_UBO_BINDING
 #define PROBE_VOLUME_UBO_BINDING 2
@@ -176,12 +176,17 @@ vec3 probeIrradianceAt(int probes[8], float weights[8], vec3 n) {
     return sum;
 }
 
-// The radiance arriving from direction d (unit, away from the receiver) at the receiver of probeSetAt(); C++:
-// ProbeVolume::radiance().
+// The radiance arriving from direction d (unit, away from the receiver) at the receiver of probeSetAt(): each
+// probe's texel that d leaves through, unfiltered (the gather's directions change every frame, its filters do the
+// rest; a filtered lookup costs llvmpipe 4 texels); C++: ProbeVolume::radiance().
 vec3 probeRadianceAt(int probes[8], float weights[8], vec3 d) {
-    vec2 size = vec2(textureSize(uProbeRadiance, 0));
+    int n = uProbeTexels.w;
+    ivec2 t = clamp(ivec2((probeOctEncode(d) * 0.5 + 0.5) * float(n)), ivec2(0), ivec2(n - 1));
     vec3 sum = vec3(0.0);
     for (int i = 0; i < 8; ++i)
-        if (probes[i] >= 0) sum += weights[i] * texture(uProbeRadiance, probeAtlasUv(probes[i], uProbeTexels.w, d, size)).rgb;
+        if (probes[i] >= 0) {
+            ivec2 origin = ivec2((probes[i] % uProbeCounts.w) * (n + 2) + 1, (probes[i] / uProbeCounts.w) * (n + 2) + 1);
+            sum += weights[i] * texelFetch(uProbeRadiance, origin + t, 0).rgb;
+        }
     return sum;
 }

@@ -375,10 +375,17 @@ glm::vec3 ProbeVolume::radiance(const glm::vec3& x, const glm::vec3& n, const gl
     int probes[8];
     float weights[8];
     probeWeights(x, n, probes, weights);
-    const glm::vec2 oct = octahedral::encode(glm::dot(dir, dir) > 1e-12f ? dir : glm::vec3(0, 0, 1));
+    const glm::vec2 p = octahedral::encode(glm::dot(dir, dir) > 1e-12f ? dir : glm::vec3(0, 0, 1)) * 0.5f + 0.5f;
+    const int ti = std::clamp(int(p.x * float(radN_)), 0, radN_ - 1), tj = std::clamp(int(p.y * float(radN_)), 0, radN_ - 1);
+    const size_t width = size_t(tilesPerRow_) * (radN_ + 2);
     glm::vec3 sum(0.0f);
-    for (int i = 0; i < 8; ++i)
-        if (probes[i] >= 0) sum += weights[i] * glm::vec3(sampleAtlas<4>(radiance_, radN_, probes[i], oct));
+    for (int i = 0; i < 8; ++i) {
+        if (probes[i] < 0) continue;
+        const size_t x = size_t(probes[i] % tilesPerRow_) * (radN_ + 2) + 1 + ti;
+        const size_t y = size_t(probes[i] / tilesPerRow_) * (radN_ + 2) + 1 + tj;
+        const float* t = &radiance_[(y * width + x) * 4];
+        sum += weights[i] * glm::vec3(t[0], t[1], t[2]);
+    }
     return sum;
 }
 

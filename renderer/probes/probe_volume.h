@@ -178,9 +178,9 @@ public:
     const std::vector<float>& depthAtlas() const { return depth_; }            // RG
     const std::vector<float>& probeData() const { return data_; }              // RGBA
     const std::vector<float>& radianceAtlas() const { return radiance_; }      // RGBA, as the irradiance atlas
-    // Radiance arriving at world position x from direction dir (unit, pointing away from x): the radiance atlases
-    // of the probes around x, sampled bilinearly in direction dir, weighted as irradiance() weighs them for a
-    // surface of normal n.
+    // Radiance arriving at world position x from direction dir (unit, pointing away from x): the texel dir leaves
+    // through in the radiance atlas of each probe around x (unfiltered), weighted as irradiance() weighs them for
+    // a surface of normal n.
     glm::vec3 radiance(const glm::vec3& x, const glm::vec3& n, const glm::vec3& dir) const;
 
 private:
