@@ -78,6 +78,7 @@ std::string referenceKey(const Scene& scene, const Camera& camera, const Setting
     if (environmentOn(scene, s)) {  // the environment: its settings and the map's pixels
         for (float v : {s.skyRadiance, s.environmentIntensity}) h = fnv1aValue(h, v);
         if (scene.environment) {
+            if (s.environmentRotation != 0.0f) h = fnv1aValue(h, s.environmentRotation);  // unturned keys stay as they were
             h = fnv1aValue(h, scene.environment->width);
             h = fnv1aValue(h, scene.environment->height);
             h = fnv1a(h, scene.environment->rgb.data(), scene.environment->rgb.size() * sizeof(float));

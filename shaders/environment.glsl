@@ -6,7 +6,8 @@
 //   vec3 probeSkyIrradiance(vec3 X, vec3 n)    (#ifdef DEEPGI_SKY, after probe_volume.glsl) irradiance (W/m^2)
 //                                               from the environment at X, normal n, with the probes' visibility
 //
-// Inputs: uniform vec4 uEnvironment = (environment.sky_radiance x intensity, environment.intensity, 1 with a map, 0);
+// Inputs: uniform vec4 uEnvironment = (environment.sky_radiance x intensity, environment.intensity, 1 with a map,
+//   environment.rotation in radians);
 //   #ifdef DEEPGI_ENVIRONMENT_MAP: sampler2D uEnvironmentMap ("Environment Map", equirectangular, row 0 = top =
 //   +Y, mip-mapped, repeating in u); #ifdef DEEPGI_SKY: sampler2D uProbeSky ("Probe Sky Irradiance").
 uniform vec4 uEnvironment;
@@ -36,7 +37,10 @@ vec3 environmentBackdrop(vec2 fragCoord) {
     float pixelAngle = max(acos(clamp(dot(d, dx), -1.0, 1.0)), acos(clamp(dot(d, dy), -1.0, 1.0)));
     float texelAngle = PI / float(textureSize(uEnvironmentMap, 0).y);
     float lod = max(0.0, log2(max(pixelAngle / texelAngle, 1e-6)));
-    L += uEnvironment.y * textureLod(uEnvironmentMap, equirectFromDirection(d), lod).rgb;
+    // The map's own direction R_y(-rotation) d (environment_map.h).
+    const float c = cos(uEnvironment.w), s = sin(uEnvironment.w);
+    const vec3 m = vec3(d.x * c - d.z * s, d.y, d.x * s + d.z * c);
+    L += uEnvironment.y * textureLod(uEnvironmentMap, equirectFromDirection(m), lod).rgb;
 #endif
     return L;
 }

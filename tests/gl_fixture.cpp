@@ -23,6 +23,8 @@ void printStackAndDie(int sig) {
 
 #ifndef __SANITIZE_ADDRESS__  // under ASan its own handler reports (with better stacks)
 const bool kStackOnFatalSignal = [] {
+    void* warm[1];
+    backtrace(warm, 1);  // loads libgcc now: a first call inside the handler would malloc, in a process whose heap broke
     for (int sig : {SIGABRT, SIGSEGV, SIGBUS, SIGFPE, SIGILL}) signal(sig, printStackAndDie);
     return true;
 }();

@@ -433,6 +433,69 @@ TEST(ProbeVolume, ResetHistoryUpdatesAsANewVolume) {
     EXPECT_TRUE(changed.probeData() == fresh.probeData());
 }
 
+// A moved object keeps the probes' history (ProbeVolume::sceneChanged(false)) but starts the settle count again and
+// places the probes around it again: a volume settled before the move goes on updating until it agrees with a new
+// volume settled on the moved scene. Before this, the settled volume stopped at once and kept the box's light and
+// shadow where it had stood (0.83 off), and with the count alone the probes the box now covers stayed disabled and
+// its red light next to it was missing (0.27 off).
+TEST(ProbeVolume, MovedObjectStartsTheSettleCountAgain) {
+    Scene scene;
+    const int white = addMaterial(scene, glm::vec3(0.75f)), red = addMaterial(scene, glm::vec3(0.9f, 0.1f, 0.05f));
+    addFloor(scene, 2.5f, 0.0f, white);
+    addQuad(scene, {-2.5f, 0.0f, -2.5f}, {2.5f, 0.0f, -2.5f}, {2.5f, 2.0f, -2.5f}, {-2.5f, 2.0f, -2.5f}, white);
+    addBox(scene, {-0.4f, 0.0f, -0.4f}, {0.4f, 0.8f, 0.4f}, red, false);
+    const int box = scene.parts.back().node;
+    addSun(scene, glm::vec3(0.3f, -0.8f, -0.5f), 3.0f);
+    scene.computeBounds();
+    auto place = [&](Scene& s, glm::vec3 at) {
+        s.nodes[size_t(box)].local.translation = at;
+        s.updateWorldTransforms();
+    };
+    const glm::vec3 before(-1.2f, 0.0f, 0.0f), after(1.2f, 0.0f, 0.0f);
+    Settings s;
+    s.probeRaysPerFrame = 1 << 20;  // every probe every update
+    s.probeRaysPerProbe = 256;
+    s.probeHysteresis = 0.8f;       // 40 updates blend the old state out to 0.8^40 = 1e-4
+    s.probeSettleUpdates = 40;
+    place(scene, before);
+    ProbeVolume moved(scene, s, 5, 2);
+    int updates = 0;
+    while (!moved.settled(s) && updates < 1000) moved.update(s), ++updates;
+    ASSERT_TRUE(moved.settled(s));
+    // Floor points along the box's path, facing up.
+    std::vector<glm::vec3> pts;
+    for (int i = 0; i <= 16; ++i) pts.push_back({-2.0f + 0.25f * float(i), 0.02f, 0.6f});
+    std::vector<glm::vec3> stale;
+    for (const glm::vec3& p : pts) stale.push_back(moved.irradiance(p, {0, 1, 0}));
+
+    place(scene, after);
+    moved.sceneChanged(false);
+    EXPECT_FALSE(moved.settled(s)) << "a move starts the count again";
+    EXPECT_GT(moved.lastReplacedCount(), 0) << "the probes the box left and now covers are placed again";
+    int afterMove = 0;
+    while (!moved.settled(s) && afterMove < 1000) moved.update(s), ++afterMove;
+    EXPECT_GE(afterMove, s.probeSettleUpdates);
+    Scene movedScene = scene;  // a new volume on the scene as it is now
+    ProbeVolume fresh(movedScene, s, 9, 2);  // another seed: independent noise
+    updates = 0;
+    while (!fresh.settled(s) && updates < 1000) fresh.update(s), ++updates;
+    double diff = 0.0, moveDiff = 0.0, sum = 0.0;
+    for (size_t i = 0; i < pts.size(); ++i) {
+        const glm::vec3 want = fresh.irradiance(pts[i], {0, 1, 0}), got = moved.irradiance(pts[i], {0, 1, 0});
+        for (int c = 0; c < 3; ++c) {
+            diff += std::abs(double(got[c]) - want[c]);
+            moveDiff += std::abs(double(stale[i][c]) - want[c]);
+            sum += want[c];
+        }
+    }
+    std::printf("moved box: probes after the move against a new volume %.4f (relative L1), before the move %.4f\n",
+                diff / sum, moveDiff / sum);
+    // The move matters (the old state is far off), and the kept history converges to the new volume's answer within
+    // the probes' noise (two independent volumes of ~9 effective updates of 256 rays).
+    EXPECT_GT(moveDiff / sum, 0.15);
+    EXPECT_LT(diff / sum, 0.05);
+}
+
 using deepgi::test::GLTest;
 
 // The probes' bounce is damped like the screen's (radiosity.bounce_damping): a settled volume whose damping changes

@@ -50,7 +50,8 @@ void EnvironmentPass::execute(FrameContext& ctx) {
 glm::vec4 environmentUniform(const FrameContext& ctx) {
     const EnvironmentSettings& s = ctx.settings;
     const float intensity = std::max(0.0f, s.environmentIntensity);
-    return {std::max(0.0f, s.skyRadiance) * intensity, intensity, ctx.config.environmentMap ? 1.0f : 0.0f, 0.0f};
+    return {std::max(0.0f, s.skyRadiance) * intensity, intensity, ctx.config.environmentMap ? 1.0f : 0.0f,
+            glm::radians(s.environmentRotation)};
 }
 
 void readEnvironmentMap(const PipelineConfig& c, PassTable& t) {

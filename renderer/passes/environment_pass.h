@@ -20,7 +20,7 @@ private:
 };
 
 // What shaders/environment.glsl's uniforms hold for this frame: uEnvironment = (sky radiance x intensity,
-// intensity, 1 when the map is bound, 0).
+// intensity, 1 when the map is bound, environment.rotation in radians).
 glm::vec4 environmentUniform(const FrameContext& ctx);
 // The environment map a pass that shows the backdrop reads (sampler uEnvironmentMap), optional without a map.
 void readEnvironmentMap(const PipelineConfig& c, PassTable& t);

@@ -47,6 +47,7 @@ void ProbeUpdatePass::execute(FrameContext& ctx) {
         const void* map = ctx.environment;
         key = fnv1a(key, &es.skyRadiance, sizeof(es.skyRadiance));
         key = fnv1a(key, &es.environmentIntensity, sizeof(es.environmentIntensity));
+        key = fnv1a(key, &es.environmentRotation, sizeof(es.environmentRotation));
         key = fnv1a(key, &map, sizeof(map));
     }
     key |= 1u;
@@ -54,11 +55,7 @@ void ProbeUpdatePass::execute(FrameContext& ctx) {
         if (lightKey_ != 0 && uploadedVolume_ == &v) v.resetHistory();
         lightKey_ = key;
     }
-    int fewest = std::numeric_limits<int>::max();
-    for (int i = 0; i < v.probeCount(); ++i)
-        if (v.state(i) == ProbeState::Active) fewest = std::min(fewest, v.updatesOf(i));
-    const int settle = ctx.settings.probeSettleUpdates;
-    const bool settled = settle > 0 && v.activeProbeCount() > 0 && fewest >= settle;
+    const bool settled = v.settled(ctx.settings);
     const bool all = uploadedGeneration_ != ctx.textures.generation() || uploadedVolume_ != &v;
     if (settled && !all) return;  // converged under these lights: nothing changes
     // New textures (a resize, a pipeline change) only need the settled state uploaded again: another update would

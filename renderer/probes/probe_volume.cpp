@@ -180,6 +180,7 @@ ProbeVolume::ProbeVolume(const Scene& scene, const Settings& s, uint64_t seed, i
     state_.assign(size_t(n), ProbeState::Active);
     offset_.assign(size_t(n), glm::vec3(0.0f));
     updates_.assign(size_t(n), 0);
+    sinceChange_.assign(size_t(n), 0);
     const size_t irrW = size_t(tilesPerRow_) * (irrN_ + 2), irrH = size_t(tileRows_) * (irrN_ + 2);
     const size_t depW = size_t(tilesPerRow_) * (depthN_ + 2), depH = size_t(tileRows_) * (depthN_ + 2);
     irradiance_.assign(irrW * irrH * 4, 0.0f);
@@ -230,14 +231,41 @@ void ProbeVolume::writeProbeData(int probe) {
 // unused those with no surface within a cell diagonal (no receiver interpolates them with any weight to speak of).
 void ProbeVolume::place(const Settings& s) {
     const auto start = std::chrono::steady_clock::now();
+    maxRelocation_ = s.probeMaxRelocation;
+    insideFraction_ = s.probeInsideFraction;
+    std::vector<int> all(size_t(grid_.count()));
+    for (int i = 0; i < grid_.count(); ++i) all[size_t(i)] = i;
+    placementRays_ = 0;
+    placeProbes(all);
+    partRestBounds_.assign(scene_.parts.size(), Aabb{});
+    for (size_t p = 0; p < scene_.parts.size(); ++p)
+        for (const Vertex& v : scene_.parts[p].vertices)
+            if (std::isfinite(v.position.x) && std::isfinite(v.position.y) && std::isfinite(v.position.z))
+                partRestBounds_[p].extend(v.position);
+    recordPlacedParts();
+    placementMs_ = msSince(start);
+}
+
+void ProbeVolume::recordPlacedParts() {
+    placedModels_.resize(scene_.parts.size());
+    placedVisible_.resize(scene_.parts.size());
+    for (size_t p = 0; p < scene_.parts.size(); ++p) {
+        placedModels_[p] = scene_.partModel(int(p));
+        placedVisible_[p] = scene_.partVisible(int(p)) ? 1 : 0;
+    }
+}
+
+std::vector<int> ProbeVolume::placeProbes(const std::vector<int>& probes) {
     const float minFront = kMinFrontDistance * grid_.minSpacing();
-    const glm::vec3 maxOffset = s.probeMaxRelocation * grid_.spacing;
+    const glm::vec3 maxOffset = maxRelocation_ * grid_.spacing;
     const float reach = glm::length(grid_.spacing);
-    const float insideFraction = s.probeInsideFraction;
+    const float insideFraction = insideFraction_;
     std::vector<glm::vec3> dirs(kPlacementRays);
     for (int i = 0; i < kPlacementRays; ++i) dirs[i] = fibonacciDirection(i, kPlacementRays);
     std::atomic<uint64_t> rays{0};
-    parallelFor(grid_.count(), threads_, [&](int probe) {
+    std::vector<char> changed(probes.size(), 0);
+    parallelFor(int(probes.size()), threads_, [&](int slot) {
+        const int probe = probes[size_t(slot)];
         const glm::vec3 home = grid_.gridPosition(grid_.coord(probe));
         glm::vec3 offset(0.0f);
         ProbeState st = ProbeState::Active;
@@ -271,16 +299,20 @@ void ProbeVolume::place(const Settings& s) {
             st = inside ? ProbeState::Inside : (nearest <= reach ? ProbeState::Active : ProbeState::Unused);
             break;
         }
+        changed[size_t(slot)] = offset_[probe] != offset || state_[probe] != st;
         offset_[probe] = offset;  // each probe writes only its own entries
         state_[probe] = st;
         rays.fetch_add(traced);
     });
-    for (int i = 0; i < grid_.count(); ++i) {
-        writeProbeData(i);
-        if (state_[i] == ProbeState::Active) ++activeCount_;
+    std::vector<int> moved;
+    for (size_t slot = 0; slot < probes.size(); ++slot) {
+        writeProbeData(probes[slot]);
+        if (changed[slot]) moved.push_back(probes[slot]);
     }
-    placementRays_ = rays.load();
-    placementMs_ = msSince(start);
+    activeCount_ = 0;
+    for (int i = 0; i < grid_.count(); ++i) activeCount_ += state_[i] == ProbeState::Active;
+    placementRays_ += rays.load();
+    return moved;
 }
 
 bool ProbeVolume::converging() const {
@@ -293,6 +325,8 @@ bool ProbeVolume::converging() const {
 // whatever came before (a capture re-rendered headless matches the viewer that changed its lights on the way).
 void ProbeVolume::resetHistory() {
     std::fill(updates_.begin(), updates_.end(), 0);
+    std::fill(sinceChange_.begin(), sinceChange_.end(), 0);
+    historyKept_ = false;
     // The bounce of the first updates reads the probes' own irradiance: none, as in a new volume (old light would
     // otherwise come back through it: a ghost of the old lighting, or multi-bounce light in a one-bounce run).
     for (size_t i = 0; i + 3 < irradiance_.size(); i += 4) irradiance_[i] = irradiance_[i + 1] = irradiance_[i + 2] = 0.0f;
@@ -421,12 +455,14 @@ ProbeUpdateStats ProbeVolume::update(const Settings& s) {
     // importance-sampled rays of its own (an absolute estimate: c x L / pdf), skySamples of them per probe.
     const glm::vec3 uniformSky(std::max(0.0f, s.skyRadiance) * std::max(0.0f, s.environmentIntensity));
     const bool skyMap = sky && scene_.environment != nullptr;
-    if (skyMap && (skyMapKey_ != scene_.environment.get() || skyMapIntensity_ != s.environmentIntensity)) {
+    if (skyMap && (skyMapKey_ != scene_.environment.get() || skyMapIntensity_ != s.environmentIntensity ||
+                   skyMapRotation_ != s.environmentRotation)) {
         Settings mapOnly = s;
         mapOnly.skyRadiance = 0.0f;
         skyMapSampler_ = std::make_shared<EnvironmentLight>(scene_.environment.get(), mapOnly, true);
         skyMapKey_ = scene_.environment.get();
         skyMapIntensity_ = s.environmentIntensity;
+        skyMapRotation_ = s.environmentRotation;
     }
     const int skySamples = skyMap && skyMapSampler_->sampled() ? std::max(16, raysPerProbe / 4) : 0;
     const glm::mat3 rotation = randomRotation(seed_, updateIndex_);
@@ -576,6 +612,7 @@ ProbeUpdateStats ProbeVolume::update(const Settings& s) {
         writeBorders(irradiance_, irrN_, 4, probe);
         writeBorders(depth_, depthN_, 2, probe);
         ++updates_[probe];
+        ++sinceChange_[probe];
         if (dirtyRowLo_ >= dirtyRowHi_) {
             dirtyRowLo_ = row;
             dirtyRowHi_ = row + 1;
@@ -642,7 +679,68 @@ namespace deepgi {
 
 void ProbeVolume::sceneChanged(bool restart) {
     tracer_.update(scene_);
+    // The probes around each part that moved, or was hidden or shown: its bounds before and after, grown by what
+    // placement looks at (a cell diagonal, and the relocation limit).
+    std::vector<Aabb> regions;
+    const glm::vec3 margin = glm::vec3(glm::length(grid_.spacing)) + maxRelocation_ * grid_.spacing;
+    for (size_t p = 0; p < scene_.parts.size() && p < placedModels_.size(); ++p) {
+        const glm::mat4 model = scene_.partModel(int(p));
+        const char visible = scene_.partVisible(int(p)) ? 1 : 0;
+        if (model == placedModels_[p] && visible == placedVisible_[p]) continue;
+        if (!partRestBounds_[p].valid()) continue;
+        for (const glm::mat4* m : {static_cast<const glm::mat4*>(&placedModels_[p]), &model}) {
+            Aabb b;
+            for (int c = 0; c < 8; ++c) {
+                const glm::vec3 corner((c & 1) ? partRestBounds_[p].hi.x : partRestBounds_[p].lo.x,
+                                       (c & 2) ? partRestBounds_[p].hi.y : partRestBounds_[p].lo.y,
+                                       (c & 4) ? partRestBounds_[p].hi.z : partRestBounds_[p].lo.z);
+                b.extend(glm::vec3(*m * glm::vec4(corner, 1.0f)));
+            }
+            if (!b.valid()) continue;
+            b.lo -= margin;
+            b.hi += margin;
+            regions.push_back(b);
+        }
+    }
+    std::vector<int> near;
+    for (int i = 0; i < grid_.count() && !regions.empty(); ++i) {
+        const glm::vec3 home = grid_.gridPosition(grid_.coord(i));
+        for (const Aabb& b : regions)
+            if (glm::all(glm::greaterThanEqual(home, b.lo)) && glm::all(glm::lessThanEqual(home, b.hi))) {
+                near.push_back(i);
+                break;
+            }
+    }
+    lastReplaced_ = 0;
+    if (!near.empty()) {
+        // A probe placed elsewhere, or active again, sees other surfaces: its history is not its own.
+        for (int probe : placeProbes(near)) {
+            updates_[size_t(probe)] = 0;
+            const int row = probe / tilesPerRow_, tile = probe % tilesPerRow_;
+            const size_t radW = size_t(tilesPerRow_) * (radN_ + 2);
+            for (int j = 0; j < radN_ + 2; ++j)  // its radiance texels' update counts: the next ray replaces each
+                for (int i = 0; i < radN_ + 2; ++i)
+                    radiance_[4 * ((size_t(row) * (radN_ + 2) + j) * radW + size_t(tile) * (radN_ + 2) + i) + 3] = 0.0f;
+            dirtyRowLo_ = dirtyRowLo_ < dirtyRowHi_ ? std::min(dirtyRowLo_, row) : row;
+            dirtyRowHi_ = std::max(dirtyRowHi_, row + 1);
+            ++lastReplaced_;
+        }
+    }
+    recordPlacedParts();
+    // A kept history still holds the scene before the edit: the probes must go on until it has been blended out.
+    std::fill(sinceChange_.begin(), sinceChange_.end(), 0);
+    historyKept_ = true;
     if (restart) resetHistory();
+}
+
+bool ProbeVolume::settled(const Settings& s) const {
+    int need = s.probeSettleUpdates;
+    if (need <= 0 || activeCount_ <= 0) return false;
+    const float h = std::min(std::max(s.probeHysteresis, 0.0f), 0.999f);
+    if (historyKept_ && h > 0.0f) need = std::max(need, int(std::ceil(std::log(0.01) / std::log(double(h)))));
+    for (size_t i = 0; i < state_.size(); ++i)
+        if (state_[i] == ProbeState::Active && sinceChange_[i] < need) return false;
+    return true;
 }
 
 }  // namespace deepgi

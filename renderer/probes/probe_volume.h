@@ -118,8 +118,16 @@ public:
     void resetHistory();
     // After a scene edit (issue 14): the tracer follows moved/hidden parts; restart = every probe's history restarts
     // too (lights or visibility changed). Moves alone keep it: restarting every frame of an animation would leave
-    // the probes dark, and their hysteresis bounds the lag.
+    // the probes dark, and their hysteresis bounds the lag. Either way the settle count starts again (settled()),
+    // and the probes near a part that moved or was hidden or shown (its bounds before and after, within a cell
+    // diagonal plus the relocation limit) are placed again; one whose offset or state changes starts over.
     void sceneChanged(bool restart);
+    // The probes have converged for the scene as it is: every active probe has had probes.settle_updates updates
+    // since the last scene change or restart (0 = never settled) and, after a change that kept the history, at
+    // least as many as the hysteresis needs to blend the scene before it out to 1% (151 at 0.97).
+    bool settled(const Settings& settings) const;
+    // Probes placed again by the last sceneChanged() (tests, the status line).
+    int lastReplacedCount() const { return lastReplaced_; }
 
     // Irradiance at world position x on a surface of unit normal n, as shaders/probe_volume.glsl computes it.
     // Safe from many threads, not during update().
@@ -148,7 +156,8 @@ public:
     ProbeState state(int probe) const { return state_[probe]; }
     glm::vec3 probePosition(int probe) const;  // grid position + relocation offset
     glm::vec3 probeOffset(int probe) const { return offset_[probe]; }
-    int updatesOf(int probe) const { return updates_[probe]; }
+    int updatesOf(int probe) const { return updates_[probe]; }  // since the last restart (the blend's ramp)
+    int updatesSinceChangeOf(int probe) const { return sinceChange_[probe]; }  // since the last scene change
     uint64_t updateCount() const { return updateIndex_; }
     bool converging() const;  // some active probe has not been updated yet
     float normalBias() const { return normalBias_; }
@@ -185,6 +194,10 @@ public:
 
 private:
     void place(const Settings& settings);
+    // Places the given probes (offset and state) against the tracer's geometry as it is now; returns those whose
+    // offset or state changed.
+    std::vector<int> placeProbes(const std::vector<int>& probes);
+    void recordPlacedParts();  // each part's model matrix and visibility as the placement saw them
     // The irradiance of the given atlas (laid out as the irradiance atlas) at x, n with irradiance()'s weights.
     glm::vec3 weightedAtlasIrradiance(const std::vector<float>& atlas, const glm::vec3& x, const glm::vec3& n,
                                       float* weightSum) const;
@@ -207,6 +220,13 @@ private:
     std::vector<ProbeState> state_;
     std::vector<glm::vec3> offset_;
     std::vector<int> updates_;
+    std::vector<int> sinceChange_;  // updates since the last sceneChanged() or resetHistory(): the settle count
+    bool historyKept_ = false;      // a sceneChanged(false) since the last restart: the old scene must blend out
+    float maxRelocation_ = 0.0f, insideFraction_ = 0.5f;  // placement settings (layout: fixed for the volume)
+    std::vector<Aabb> partRestBounds_;        // each part's vertices' bounds as loaded
+    std::vector<glm::mat4> placedModels_;     // each part's model matrix when its probes were last placed
+    std::vector<char> placedVisible_;         // and its visibility
+    int lastReplaced_ = 0;
     int activeCount_ = 0;
     size_t cursor_ = 0;  // round-robin position over the grid
     uint64_t updateIndex_ = 0;
@@ -217,6 +237,7 @@ private:
     std::shared_ptr<const EnvironmentLight> skyMapSampler_;
     const void* skyMapKey_ = nullptr;
     float skyMapIntensity_ = -1.0f;
+    float skyMapRotation_ = 0.0f;
     struct TexelDirections {  // interior texel directions, row-major per tile, as arrays for SIMD loops
         std::vector<float> x, y, z;  // padded with zero vectors to a multiple of 8
         size_t count = 0;            // real texels

@@ -145,7 +145,9 @@ bool environmentOn(const Scene& scene, const Settings& s) {
 EnvironmentLight::EnvironmentLight(const EnvironmentMap* map, const Settings& s, bool withSampling)
     : map_(map && map->width > 0 && map->height > 0 ? map : nullptr),
       sky_(std::max(0.0f, s.skyRadiance)),
-      intensity_(std::max(0.0f, s.environmentIntensity)) {
+      intensity_(std::max(0.0f, s.environmentIntensity)),
+      cosRotation_(std::cos(glm::radians(s.environmentRotation))),
+      sinRotation_(std::sin(glm::radians(s.environmentRotation))) {
     bool any = sky_ > 0.0f;
     if (map_ && !any)
         for (float v : map_->rgb)
@@ -208,11 +210,19 @@ glm::vec3 EnvironmentLight::texel(int x, int y) const {
     return {p[0], p[1], p[2]};
 }
 
+glm::vec3 EnvironmentLight::toMap(const glm::vec3& d) const {
+    return {d.x * cosRotation_ - d.z * sinRotation_, d.y, d.x * sinRotation_ + d.z * cosRotation_};
+}
+
+glm::vec3 EnvironmentLight::fromMap(const glm::vec3& m) const {
+    return {m.x * cosRotation_ + m.z * sinRotation_, m.y, -m.x * sinRotation_ + m.z * cosRotation_};
+}
+
 glm::vec3 EnvironmentLight::radiance(const glm::vec3& d) const {
     if (!enabled_) return glm::vec3(0.0f);
     glm::vec3 L(sky_);
     if (map_) {
-        const glm::vec2 ut = equirectFromDirection(d);
+        const glm::vec2 ut = equirectFromDirection(toMap(d));
         const int W = map_->width, H = map_->height;
         const float fx = ut.x * float(W) - 0.5f, fy = ut.y * float(H) - 0.5f;
         const float x0f = std::floor(fx), y0f = std::floor(fy), tx = fx - x0f, ty = fy - y0f;
@@ -235,7 +245,7 @@ EnvironmentLight::Sample EnvironmentLight::sample(float u1, float u2) const {
     const float colP = cdf[x + 1] - cdf[x];
     const float fx = colP > 0.0f ? std::clamp((u2 - cdf[x]) / colP, 0.0f, 0.99999994f) : 0.5f;
     const float u = (float(x) + fx) / float(W), t = (float(y) + fy) / float(H);
-    s.direction = directionFromEquirect(u, t);
+    s.direction = fromMap(directionFromEquirect(u, t));
     const float sinTheta = std::sin(t * kPi);
     const float p = texelProbability_[size_t(y) * W + x];
     // Uniform within the texel in (u, t): density W*H*p over the unit square, / (2 pi^2 sin(theta)) per solid angle.
@@ -247,7 +257,7 @@ EnvironmentLight::Sample EnvironmentLight::sample(float u1, float u2) const {
 float EnvironmentLight::pdf(const glm::vec3& d) const {
     if (!sampled()) return 0.0f;
     const int W = map_->width, H = map_->height;
-    const glm::vec2 ut = equirectFromDirection(d);
+    const glm::vec2 ut = equirectFromDirection(toMap(d));
     const int x = std::clamp(int(ut.x * float(W)), 0, W - 1), y = std::clamp(int(ut.y * float(H)), 0, H - 1);
     const float sinTheta = std::sin(ut.y * kPi);
     if (!(sinTheta > 0.0f)) return 0.0f;

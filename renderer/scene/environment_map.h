@@ -12,6 +12,9 @@
 // frame) carried through the glTF exporter's axis change (x, y, z)_Blender -> (x, z, -y)_glTF, and three.js's.
 // Texel (i, j) covers u in [i/W, (i+1)/W), t in [j/H, (j+1)/H); lookups are bilinear between texel centres,
 // wrapping in u and clamped in t.
+// environment.rotation turns the map about +Y: L_env(d) = map(R_y(-angle) d), R_y counter-clockwise seen from above
+// (R_y(90 deg) takes +Z to +X). OpenEXR's latitude-longitude maps put +Z at the centre and +X at u = 0.25
+// (ImfEnvmap.h): -90 shows them as they were meant.
 //
 // A uniform sky (sky_radiance alone) needs no map. light.background stays what it was: a grey backdrop added to
 // what camera rays that miss see, lighting nothing; the environment both shows and lights.
@@ -74,8 +77,11 @@ public:
 
 private:
     glm::vec3 texel(int x, int y) const;
+    glm::vec3 toMap(const glm::vec3& d) const;    // R_y(-angle) d: the map's own direction
+    glm::vec3 fromMap(const glm::vec3& m) const;  // R_y(angle) m
     const EnvironmentMap* map_ = nullptr;
     float sky_ = 0.0f, intensity_ = 1.0f;
+    float cosRotation_ = 1.0f, sinRotation_ = 0.0f;
     bool enabled_ = false;
     // Sampling: per texel the weight max(its luminance, 1/4 of the largest in its 3x3 neighbourhood) x sin(theta of
     // its row): bilinear lookups reach the neighbours, so the density is positive wherever the radiance is.
