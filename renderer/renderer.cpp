@@ -174,10 +174,13 @@ PipelineConfig Renderer::makeConfig(const Settings& s) const {
     }
     if (probes_) {
         c.probes = s.probesEnabled && s.indirect;  // the indirect fallback; the volume may exist for the sky alone
+        c.probeDirectionalFill = c.probes && s.probeDirectionalFill;
         c.sky = environmentOn(*scene_, s);
         for (const auto& t : probes_->textures()) {
-            if (t.name == "Probe Radiance SH") continue;  // its size follows Probe Data's (9 texels per probe)
-            int* size = t.name == "Probe Irradiance" ? c.probeIrradianceSize : t.name == "Probe Depth" ? c.probeDepthSize : c.probeDataSize;
+            int* size = t.name == "Probe Irradiance" ? c.probeIrradianceSize
+                        : t.name == "Probe Depth"    ? c.probeDepthSize
+                        : t.name == "Probe Radiance" ? c.probeRadianceSize
+                                                     : c.probeDataSize;
             size[0] = t.width;
             size[1] = t.height;
         }

@@ -13,16 +13,17 @@
 //                             w = normal bias (scene units)
 //       vec4  uProbeSpacing;  xyz = spacing per axis (scene units), w = 1 once every active probe was updated
 //       ivec4 uProbeCounts;   xyz = probes per axis, w = atlas tiles per row (probe i: tile (i % w, i / w))
-//       ivec4 uProbeTexels;   x = irradiance interior texels I, y = depth interior texels D, z = active probes
+//       ivec4 uProbeTexels;   x = irradiance interior texels I, y = depth interior texels D, z = active probes,
+//                             w = radiance interior texels R
 //   sampler2D uProbeIrradiance  unit PROBE_IRRADIANCE_UNIT (default 2): "Probe Irradiance", RGBA32F,
 //                               tiles of (I+2)^2 texels, GL_LINEAR, clamp to edge
 //   sampler2D uProbeDepth       unit PROBE_DEPTH_UNIT (default 3): "Probe Depth", RG32F, tiles of (D+2)^2,
 //                               GL_LINEAR, clamp to edge
 //   sampler2D uProbeData        unit PROBE_DATA_UNIT (default 5): "Probe Data", RGBA32F, one texel per probe,
 //                               read with texelFetch (xyz offset, w state: > 0.5 = active)
-//   sampler2D uProbeRadianceSH  unit PROBE_RADIANCE_SH_UNIT (default 6): "Probe Radiance SH", RGBA32F, 9 texels per
-//                               probe (order-2 harmonics of the arriving radiance), read with texelFetch; only
-//                               probeIrradianceAndRadianceSH() reads it
+//   sampler2D uProbeRadiance    unit PROBE_RADIANCE_UNIT (default 6): "Probe Radiance", RGBA32F, tiles of (R+2)^2
+//                               texels (R = uProbeTexels.w), read with texelFetch: the radiance arriving per
+//                               direction; only probeRadianceAt() reads it
 #ifndef PROBE_VOLUME_UBO_BINDING
 #define PROBE_VOLUME_UBO_BINDING 2
 #endif
@@ -35,8 +36,8 @@
 #ifndef PROBE_DATA_UNIT
 #define PROBE_DATA_UNIT 5
 #endif
-#ifndef PROBE_RADIANCE_SH_UNIT
-#define PROBE_RADIANCE_SH_UNIT 6
+#ifndef PROBE_RADIANCE_UNIT
+#define PROBE_RADIANCE_UNIT 6
 #endif
 
 layout(std140, binding = PROBE_VOLUME_UBO_BINDING) uniform ProbeVolumeUniforms {
@@ -49,12 +50,12 @@ layout(std140, binding = PROBE_VOLUME_UBO_BINDING) uniform ProbeVolumeUniforms {
 layout(binding = PROBE_IRRADIANCE_UNIT) uniform sampler2D uProbeIrradiance;
 layout(binding = PROBE_DEPTH_UNIT) uniform sampler2D uProbeDepth;
 layout(binding = PROBE_DATA_UNIT) uniform sampler2D uProbeData;
-layout(binding = PROBE_RADIANCE_SH_UNIT) uniform sampler2D uProbeRadianceSH;
+layout(binding = PROBE_RADIANCE_UNIT) uniform sampler2D uProbeRadiance;
 #else
 uniform sampler2D uProbeIrradiance;
 uniform sampler2D uProbeDepth;
 uniform sampler2D uProbeData;
-uniform sampler2D uProbeRadianceSH;
+uniform sampler2D uProbeRadiance;
 #endif
 
 float probeSignNotZero(float v) { return v >= 0.0 ? 1.0 : -1.0; }
@@ -145,41 +146,47 @@ vec4 probeIrradianceWeighted(vec3 X, vec3 n) { return probeAtlasWeighted(uProbeI
 
 vec3 probeIrradiance(vec3 X, vec3 n) { return probeIrradianceWeighted(X, n).rgb; }
 
-// Order-2 real spherical harmonics at unit direction d, in the order of ProbeVolume's "Probe Radiance SH" texels
-// (Y00, Y1-1, Y10, Y11, Y2-2, Y2-1, Y20, Y21, Y22); the constants are folded into probeSHIntegrate() below.
-//
-// probeIrradianceAndRadianceSH(X, n, sh): probeIrradianceWeighted(X, n), and in sh the harmonics of the radiance
-// arriving at X, blended over the same probes with the same weights. Per direction d:
-//   L(d) = sum_k sh[k] * Y_k(d)
-// so the probes' share of a set of directions with weights w_i (cos x solid angle) is dot(sh, sum_i w_i Y_k(d_i)).
-vec4 probeIrradianceAndRadianceSH(vec3 X, vec3 n, out vec3 sh[9]) {
-    for (int k = 0; k < 9; ++k) sh[k] = vec3(0.0);
+// The 8 probes around X (surface normal n) and their normalised weights (probe -1: none), once per receiver, for
+// probeRadianceAt() in as many directions as needed. False where no probe answers.
+bool probeSetAt(vec3 X, vec3 n, out int probes[8], out float weights[8]) {
+    for (int i = 0; i < 8; ++i) {
+        probes[i] = -1;
+        weights[i] = 0.0;
+    }
     ivec3 base;
     vec3 alpha, biased;
-    if (!probeCell(X, n, base, alpha, biased)) return vec4(0.0);
-    vec2 irrSize = vec2(textureSize(uProbeIrradiance, 0)), depthSize = vec2(textureSize(uProbeDepth, 0));
-    vec3 sum = vec3(0.0);
+    if (!probeCell(X, n, base, alpha, biased)) return false;
+    vec2 depthSize = vec2(textureSize(uProbeDepth, 0));
     float total = 0.0;
     for (int i = 0; i < 8; ++i) {
-        float weight;
-        int probe = probeCorner(i, base, alpha, X, n, biased, depthSize, weight);
-        if (probe < 0) continue;
-        sum += weight * texture(uProbeIrradiance, probeAtlasUv(probe, uProbeTexels.x, n, irrSize)).rgb;
-        ivec2 t = ivec2((probe % uProbeCounts.w) * 9, probe / uProbeCounts.w);
-        for (int k = 0; k < 9; ++k) sh[k] += weight * texelFetch(uProbeRadianceSH, t + ivec2(k, 0), 0).rgb;
-        total += weight;
+        probes[i] = probeCorner(i, base, alpha, X, n, biased, depthSize, weights[i]);
+        if (probes[i] >= 0) total += weights[i];
     }
-    if (!(total > 0.0)) return vec4(0.0);
-    for (int k = 0; k < 9; ++k) sh[k] /= total;
-    return vec4(sum / total, total);
+    if (!(total > 0.0)) return false;
+    for (int i = 0; i < 8; ++i) weights[i] /= total;
+    return true;
 }
 
-// The 9 direction moments a set of weighted directions needs, accumulated one direction at a time:
-//   m0 += w;  m1 += w * d;  m2 += w * (d.x d.y, d.y d.z, d.x d.z);  m3 += w * (d.z^2, d.x^2 - d.y^2)
-// and the probes' radiance integrated over them: sum_i w_i L(d_i).
-vec3 probeSHIntegrate(vec3 sh[9], float m0, vec3 m1, vec3 m2, vec2 m3) {
-    const float c0 = 0.282094792, c1 = 0.488602512, c2 = 1.092548431, c3 = 0.315391565, c4 = 0.546274215;
-    return sh[0] * (c0 * m0) + sh[1] * (c1 * m1.y) + sh[2] * (c1 * m1.z) + sh[3] * (c1 * m1.x) +
-           sh[4] * (c2 * m2.x) + sh[5] * (c2 * m2.y) + sh[6] * (c3 * (3.0 * m3.x - m0)) + sh[7] * (c2 * m2.z) +
-           sh[8] * (c4 * m3.y);
+// The irradiance on normal n at the receiver of probeSetAt() (as probeIrradiance(), without recomputing weights).
+vec3 probeIrradianceAt(int probes[8], float weights[8], vec3 n) {
+    vec2 size = vec2(textureSize(uProbeIrradiance, 0));
+    vec3 sum = vec3(0.0);
+    for (int i = 0; i < 8; ++i)
+        if (probes[i] >= 0) sum += weights[i] * texture(uProbeIrradiance, probeAtlasUv(probes[i], uProbeTexels.x, n, size)).rgb;
+    return sum;
+}
+
+// The radiance arriving from direction d (unit, away from the receiver) at the receiver of probeSetAt(): each
+// probe's texel that d leaves through, unfiltered (the gather's directions change every frame, its filters do the
+// rest; a filtered lookup costs llvmpipe 4 texels); C++: ProbeVolume::radiance().
+vec3 probeRadianceAt(int probes[8], float weights[8], vec3 d) {
+    int n = uProbeTexels.w;
+    ivec2 t = clamp(ivec2((probeOctEncode(d) * 0.5 + 0.5) * float(n)), ivec2(0), ivec2(n - 1));
+    vec3 sum = vec3(0.0);
+    for (int i = 0; i < 8; ++i)
+        if (probes[i] >= 0) {
+            ivec2 origin = ivec2((probes[i] % uProbeCounts.w) * (n + 2) + 1, (probes[i] / uProbeCounts.w) * (n + 2) + 1);
+            sum += weights[i] * texelFetch(uProbeRadiance, origin + t, 0).rgb;
+        }
+    return sum;
 }

@@ -712,7 +712,7 @@ TEST_F(GLTest, SkyShaderMatchesTheCpp) {
     }
     const int N = int(ps.size());
     std::vector<ProbeTextureDesc> descs = v.textures();
-    descs.resize(3);  // irradiance, depth, data: what the sky lookup reads (not the radiance harmonics)
+    descs.resize(3);  // irradiance, depth, data: what the sky lookup reads (not the radiance atlas)
     descs.push_back(v.skyTexture());
     std::vector<gl::TextureHandle> tex = probeAtlasTextures(descs);
     v.uploadSkyTexture(tex[3].id(), true);

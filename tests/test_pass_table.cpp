@@ -349,7 +349,7 @@ TEST_F(GLTest, GraphListsThePipelineInOrder) {
                                                "Radiosity gather", "Ambient occlusion (off)", "Bilateral blur",
                                                "Temporal blend", "Composite"}));
     const auto& gather = g[6];
-    EXPECT_EQ(gather.reads, (std::vector<std::string>{"Depth", "Normal", "Input Radiance", "Probe Irradiance", "Probe Depth", "Probe Data", "Probe Radiance SH"}));
+    EXPECT_EQ(gather.reads, (std::vector<std::string>{"Depth", "Normal", "Input Radiance", "Probe Irradiance", "Probe Depth", "Probe Data", "Probe Radiance"}));
     EXPECT_EQ(gather.writes, (std::vector<std::string>{"Output Radiance", "Gather Coverage"}));
     // Units are distinct within a pass and never the material textures' 0 and 1.
     for (const auto& n : g) {

@@ -559,6 +559,36 @@ TEST(ProbeVolume, GridFitsTheBoundsWithinTheCount) {
 }
 
 
+// The probes' radiance per direction (the directional fill's "Probe Radiance") inside a closed box whose six walls
+// emit six different colours and reflect nothing: along each axis, every probe near the centre sees the one wall
+// that axis points at (from the farthest probe, 1.5 away, the nearest edge of the wall is 18 degrees off the
+// axis), so radiance(x, n, axis) is exactly that wall's emission; and it is the same whatever the receiver's normal.
+TEST(ProbeVolume, RadiancePerDirectionIsTheEmissionOfTheWallSeen) {
+    Scene scene;
+    const float L = 2.0f;
+    addBox(scene, glm::vec3(0.0f), glm::vec3(L), addMaterial(scene, glm::vec3(0.0f)), true);
+    const glm::vec3 emission[6] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {1, 1, 0}, {0, 1, 1}, {1, 0, 1}};  // +X -X +Y -Y +Z -Z
+    for (int f = 0; f < 6; ++f)
+        scene.parts[scene.parts.size() - 6 + size_t(f)].material = addMaterial(scene, glm::vec3(0.0f), 2.0f * emission[f]);
+    scene.computeBounds();
+    Settings s = noLights();
+    s.probeRelativeSpacing = 0.5f;  // 2 x 2 x 2 probes, each 0.5 from three walls: all active (one near every wall)
+    s.probeRadianceTexels = 16;     // texels of about 11 degrees: rays in those around an axis all hit its wall
+    ProbeVolume v(scene, s);
+    converge(v, s, 40);
+    const glm::vec3 axes[6] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
+    int checked = 0;
+    for (const glm::vec3& x : {glm::vec3(1.0f), glm::vec3(0.85f, 1.1f, 0.95f), glm::vec3(1.12f, 0.9f, 1.05f)})
+        for (const glm::vec3& n : {glm::vec3(0, 1, 0), glm::normalize(glm::vec3(1, -1, 2))})
+            for (int f = 0; f < 6; ++f) {
+                const glm::vec3 r = v.radiance(x, n, axes[f]);
+                for (int c = 0; c < 3; ++c)
+                    EXPECT_NEAR(r[c], 2.0f * emission[f][c], 0.01f) << "wall " << f << " channel " << c << " at " << x.x;
+                ++checked;
+            }
+    EXPECT_EQ(checked, 36);
+}
+
 // The GLSL probeIrradiance() equals ProbeVolume::irradiance() (within llvmpipe's 8-bit filtering weights).
 TEST_F(GLTest, ProbeVolumeShaderMatchesTheCpp) {
     const auto scene = deepgi::test::cornellScene();
@@ -609,6 +639,20 @@ TEST_F(GLTest, ProbeVolumeShaderMatchesTheCpp) {
         lit += E.x > 0.01f;
     }
     EXPECT_GT(lit, N / 2) << "most points receive some indirect light";
+
+    // probeRadianceAt() equals ProbeVolume::radiance() (the directional fill's lookup), in a direction per point.
+    glBindTextureUnit(6, tex[3].id());
+    const std::string radianceLib = lib + "\nvec3 testDirection(vec3 n) { return normalize(n + vec3(0.3, -0.2, 0.1)); }\n"
+                                          "vec4 testRadiance(vec3 X, vec3 n) { int p[8]; float w[8]; probeSetAt(X, n, p, w);\n"
+                                          "  return vec4(probeRadianceAt(p, w, testDirection(n)), 1.0); }\n";
+    const std::vector<float> rad = evaluateAtPoints("#version 450 core\n#define PROBE_VOLUME_FIXED_UNITS\n" + radianceLib,
+                                                    "testRadiance(uPoints[i], uNormals[i])", ps, ns);
+    ASSERT_EQ(rad.size(), size_t(N) * 4);
+    for (int i = 0; i < N; ++i) {
+        const glm::vec3 L = v.radiance(ps[i], ns[i], glm::normalize(ns[i] + glm::vec3(0.3f, -0.2f, 0.1f)));
+        const float scale = std::max({L.x, L.y, L.z, 1e-3f});
+        for (int c = 0; c < 3; ++c) EXPECT_NEAR(rad[4 * i + c], L[c], 0.02f * scale + 1e-4f) << "radiance, point " << i;
+    }
 
     // Later uploads send only the tile rows the updates changed; the textures still equal the CPU arrays.
     s.probeRaysPerFrame = 5 * 128;

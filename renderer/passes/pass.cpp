@@ -10,8 +10,9 @@ namespace deepgi {
 bool PipelineConfig::operator==(const PipelineConfig& o) const {
     return layer2 == o.layer2 && emission == o.emission && indirect == o.indirect && seedComposite == o.seedComposite &&
            blur == o.blur && temporal == o.temporal && temporalFirst == o.temporalFirst && depthPeel == o.depthPeel && ao == o.ao &&
-           probes == o.probes && std::equal(probeIrradianceSize, probeIrradianceSize + 2, o.probeIrradianceSize) &&
+           probes == o.probes && probeDirectionalFill == o.probeDirectionalFill && std::equal(probeIrradianceSize, probeIrradianceSize + 2, o.probeIrradianceSize) &&
            std::equal(probeDepthSize, probeDepthSize + 2, o.probeDepthSize) && std::equal(probeDataSize, probeDataSize + 2, o.probeDataSize) &&
+           std::equal(probeRadianceSize, probeRadianceSize + 2, o.probeRadianceSize) &&
            shadowMapLayers == o.shadowMapLayers && shadowCubeLayers == o.shadowCubeLayers &&
            radiosityDownsample == o.radiosityDownsample && specular == o.specular && occlusion == o.occlusion &&
            normalMaps == o.normalMaps && objectIds == o.objectIds && objectMotion == o.objectMotion &&

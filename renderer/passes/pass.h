@@ -39,7 +39,8 @@ struct PipelineConfig {
     bool depthPeel = false;
     bool ao = false;           // the ambient-occlusion pass runs
     bool probes = false;       // the world-space probe fallback runs (probes.enabled, indirect on)
-    int probeIrradianceSize[2] = {0, 0}, probeDepthSize[2] = {0, 0}, probeDataSize[2] = {0, 0};
+    bool probeDirectionalFill = false;  // with probes: the gather fills per sector from Probe Radiance
+    int probeIrradianceSize[2] = {0, 0}, probeDepthSize[2] = {0, 0}, probeDataSize[2] = {0, 0}, probeRadianceSize[2] = {0, 0};
     // The environment (renderer/scene/environment_map.h): sky = it lights the scene (the probe volume carries its
     // visibility: "Probe Sky Irradiance", same size as the probe irradiance); environmentMap = a map is shown and
     // sampled ("Environment Map", environmentMapSize).

@@ -29,11 +29,11 @@ void ProbeUpdatePass::table(const PipelineConfig& c, PassTable& t) const {
                  MemoryGroup::Extra, Visualize::Radiance,
                  "Irradiance from the environment of each probe over the sphere of directions (its rays that leave "
                  "the scene; octahedral tiles as Probe Irradiance): the sky's direct light with visibility"});
-    const int shSize[2] = {c.probeDataSize[0] * 9, c.probeDataSize[1]};  // 9 texels per probe
-    t.write({"Probe Radiance SH", {"Probe Radiance SH"}, GL_RGBA32F, GL_TEXTURE_2D, size(shSize), 1, MemoryGroup::Extra,
-             Visualize::Radiance,
-             "Radiance arriving at each probe per direction, order-2 spherical harmonics (9 texels per probe): the "
-             "gather fills only the directions the screen did not cover"});
+    if (c.probeDirectionalFill)
+        t.write({"Probe Radiance", {"Probe Radiance"}, GL_RGBA32F, GL_TEXTURE_2D, size(c.probeRadianceSize), 1,
+                 MemoryGroup::Extra, Visualize::Radiance,
+                 "Radiance arriving at each probe per direction (octahedral tiles as Probe Irradiance; a = updates "
+                 "with a ray through the texel): the gather fills the hemisphere sectors the screen did not cover"});
 }
 
 void ProbeUpdatePass::execute(FrameContext& ctx) {
@@ -63,7 +63,7 @@ void ProbeUpdatePass::execute(FrameContext& ctx) {
     if (!settled) v.update(ctx.settings);
     if (ctx.config.sky) v.uploadSkyTexture(ctx.texture("Probe Sky Irradiance"), all);
     v.uploadTextures(ctx.texture("Probe Irradiance"), ctx.texture("Probe Depth"), ctx.texture("Probe Data"),
-                     ctx.texture("Probe Radiance SH"), all);
+                     ctx.config.probeDirectionalFill ? ctx.texture("Probe Radiance") : 0, all);
     uploadedGeneration_ = ctx.textures.generation();
     uploadedVolume_ = &v;
     v.uploadUniforms(ctx.probeUniforms);
@@ -79,7 +79,7 @@ void readProbeSky(PassTable& t) {
     readProbeVolume(t);
     t.read("Probe Sky Irradiance", "uProbeSky");
 }
-void readProbeRadiance(PassTable& t) { t.read("Probe Radiance SH", "uProbeRadianceSH"); }
+void readProbeRadiance(PassTable& t) { t.read("Probe Radiance", "uProbeRadiance"); }
 
 void bindProbeUniforms(const FrameContext& ctx) { glBindBufferBase(GL_UNIFORM_BUFFER, 2, ctx.probeUniforms); }
 

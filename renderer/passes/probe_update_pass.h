@@ -23,7 +23,7 @@ private:
 // The probe textures a pass that includes probe_volume.glsl reads (samplers uProbeIrradiance, uProbeDepth,
 // uProbeData), and its uniform block (binding 2) bound for the next draw.
 void readProbeVolume(PassTable& t);
-// The probes' per-direction radiance (sampler uProbeRadianceSH, probe_volume.glsl's probeRadianceSH()).
+// The probes' per-direction radiance (sampler uProbeRadiance, probe_volume.glsl's probeRadianceAt()).
 void readProbeRadiance(PassTable& t);
 void bindProbeUniforms(const FrameContext& ctx);
 // The probe textures and the sky atlas ("Probe Sky Irradiance", sampler uProbeSky) of shaders/environment.glsl.

@@ -27,10 +27,8 @@ void RadiosityGatherPass::table(const PipelineConfig& c, PassTable& t) const {
     t.read("Depth", "uDepth");
     t.read("Normal", "uNormal");
     t.read("Input Radiance", "uRadiance");
-    if (c.probes) {  // the part of the hemisphere the screen does not cover
-        readProbeVolume(t);
-        readProbeRadiance(t);
-    }
+    if (c.probes) readProbeVolume(t);  // the part of the hemisphere the screen does not cover
+    if (c.probeDirectionalFill) readProbeRadiance(t);  // per sector
     t.write({"Output Radiance", {"Output Radiance"}, GL_R11F_G11F_B10F, GL_TEXTURE_2D, c.radiositySize(), 1,
              MemoryGroup::Radiosity, Visualize::Radiance,
              "Indirect irradiance at layer 1: raw gather (the probes fill what the screen did not cover), then blurred "
@@ -47,7 +45,7 @@ void RadiosityGatherPass::execute(FrameContext& ctx) {
     std::vector<std::string> defines;
     if (!ctx.config.layer2) defines.push_back("DEEPGI_SINGLE_LAYER");
     if (ctx.config.probes) defines.push_back("DEEPGI_PROBES");
-    if (ctx.config.probes && ctx.settings.probeDirectionalFill) defines.push_back("DEEPGI_PROBE_DIRECTIONAL_FILL");
+    if (ctx.config.probeDirectionalFill) defines.push_back("DEEPGI_PROBE_DIRECTIONAL_FILL");
     Program& prog = program_.get(ctx.shaders, {"fullscreen.vert", "", "radiosity_gather.frag", "", defines});
     const int levels = ctx.entry("Input Radiance").decl.levels;
     const int maxMip = std::max(0, std::min(5, levels - 1));

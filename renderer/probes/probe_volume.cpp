@@ -122,21 +122,6 @@ void accumulateDepth(size_t n, const float* x, const float* y, const float* z, c
         }
 }
 
-// Real spherical harmonics of order 2 at unit direction d (Y00, Y1-1, Y10, Y11, Y2-2, Y2-1, Y20, Y21, Y22), as
-// shaders/probe_volume.glsl's probeSHBasis().
-constexpr int kSH = 9;
-void shBasis(const glm::vec3& d, float y[kSH]) {
-    y[0] = 0.282094792f;
-    y[1] = 0.488602512f * d.y;
-    y[2] = 0.488602512f * d.z;
-    y[3] = 0.488602512f * d.x;
-    y[4] = 1.092548431f * d.x * d.y;
-    y[5] = 1.092548431f * d.y * d.z;
-    y[6] = 0.315391565f * (3.0f * d.z * d.z - 1.0f);
-    y[7] = 1.092548431f * d.x * d.z;
-    y[8] = 0.546274215f * (d.x * d.x - d.y * d.y);
-}
-
 }  // namespace
 
 ProbeGrid fitProbeGrid(const Aabb& bounds, const Settings& s) {
@@ -176,7 +161,8 @@ ProbeGrid fitProbeGrid(const Aabb& bounds, const Settings& s) {
 bool ProbeVolume::layoutChanged(const Settings& a, const Settings& b) {
     return a.probeSpacing != b.probeSpacing || a.probeRelativeSpacing != b.probeRelativeSpacing ||
            a.probeMaxCount != b.probeMaxCount || a.probeIrradianceTexels != b.probeIrradianceTexels ||
-           a.probeDepthTexels != b.probeDepthTexels || a.probeInsideFraction != b.probeInsideFraction ||
+           a.probeDepthTexels != b.probeDepthTexels || a.probeRadianceTexels != b.probeRadianceTexels ||
+           a.probeInsideFraction != b.probeInsideFraction ||
            a.probeMaxRelocation != b.probeMaxRelocation || a.probeNormalBias != b.probeNormalBias;
 }
 
@@ -185,6 +171,7 @@ ProbeVolume::ProbeVolume(const Scene& scene, const Settings& s, uint64_t seed, i
     threads_ = threads > 0 ? threads : std::max(1, int(std::thread::hardware_concurrency()));
     irrN_ = std::min(std::max(s.probeIrradianceTexels, 2), 64);
     depthN_ = std::min(std::max(s.probeDepthTexels, 2), 64);
+    radN_ = std::min(std::max(s.probeRadianceTexels, 2), 64);
     normalBias_ = s.probeNormalBias * grid_.minSpacing();
     maxDistance_ = 1.5f * glm::length(grid_.spacing);
     const int n = grid_.count();
@@ -204,7 +191,7 @@ ProbeVolume::ProbeVolume(const Scene& scene, const Settings& s, uint64_t seed, i
         depth_[i + 1] = maxDistance_ * maxDistance_;
     }
     data_.assign(size_t(tilesPerRow_) * tileRows_ * 4, 0.0f);
-    radianceSH_.assign(size_t(tilesPerRow_) * kSH * tileRows_ * 4, 0.0f);
+    radiance_.assign(size_t(tilesPerRow_) * (radN_ + 2) * size_t(tileRows_) * (radN_ + 2) * 4, 0.0f);
     for (auto [dirs, n] : {std::pair{&irrDirs_, irrN_}, std::pair{&depthDirs_, depthN_}})
         for (int j = 0; j < n; ++j)
             for (int i = 0; i < n; ++i) {
@@ -343,7 +330,7 @@ void ProbeVolume::resetHistory() {
     // The bounce of the first updates reads the probes' own irradiance: none, as in a new volume (old light would
     // otherwise come back through it: a ghost of the old lighting, or multi-bounce light in a one-bounce run).
     for (size_t i = 0; i + 3 < irradiance_.size(); i += 4) irradiance_[i] = irradiance_[i + 1] = irradiance_[i + 2] = 0.0f;
-    std::fill(radianceSH_.begin(), radianceSH_.end(), 0.0f);
+    std::fill(radiance_.begin(), radiance_.end(), 0.0f);  // values and per-texel update counts
     updateIndex_ = 0;
     cursor_ = 0;
     for (size_t i = 0; i + 3 < sky_.size(); i += 4) sky_[i] = sky_[i + 1] = sky_[i + 2] = 0.0f;
@@ -422,14 +409,16 @@ glm::vec3 ProbeVolume::radiance(const glm::vec3& x, const glm::vec3& n, const gl
     int probes[8];
     float weights[8];
     probeWeights(x, n, probes, weights);
-    float y[kSH];
-    shBasis(dir, y);
+    const glm::vec2 p = octahedral::encode(glm::dot(dir, dir) > 1e-12f ? dir : glm::vec3(0, 0, 1)) * 0.5f + 0.5f;
+    const int ti = std::clamp(int(p.x * float(radN_)), 0, radN_ - 1), tj = std::clamp(int(p.y * float(radN_)), 0, radN_ - 1);
+    const size_t width = size_t(tilesPerRow_) * (radN_ + 2);
     glm::vec3 sum(0.0f);
     for (int i = 0; i < 8; ++i) {
         if (probes[i] < 0) continue;
-        const float* c = &radianceSH_[4 * (size_t(probes[i] / tilesPerRow_) * tilesPerRow_ * kSH +
-                                           size_t(probes[i] % tilesPerRow_) * kSH)];
-        for (int k = 0; k < kSH; ++k) sum += weights[i] * y[k] * glm::vec3(c[4 * k], c[4 * k + 1], c[4 * k + 2]);
+        const size_t x = size_t(probes[i] % tilesPerRow_) * (radN_ + 2) + 1 + ti;
+        const size_t y = size_t(probes[i] / tilesPerRow_) * (radN_ + 2) + 1 + tj;
+        const float* t = &radiance_[(y * width + x) * 4];
+        sum += weights[i] * glm::vec3(t[0], t[1], t[2]);
     }
     return sum;
 }
@@ -486,7 +475,8 @@ ProbeUpdateStats ProbeVolume::update(const Settings& s) {
     std::vector<float> newIrr(batch.size() * irrTexels * 4, 0.0f), newDepth(batch.size() * depthTexels * 3, 0.0f);
     std::vector<float> newSky(sky ? batch.size() * irrTexels * 4 : 0, 0.0f);  // as newIrr, the uniform sky alone
     std::vector<float> newSkyMap(skySamples ? batch.size() * irrTexels * 4 : 0, 0.0f);  // the map: sum c L / pdf / n
-    std::vector<float> newSH(batch.size() * (kSH * 3 + 1), 0.0f);  // per slot: sum of L * Y_k (rgb), rays with radiance
+    const size_t radTexels = size_t(radN_) * radN_;
+    std::vector<float> newRad(batch.size() * radTexels * 4, 0.0f);  // per slot and texel: sum of L (rgb), rays
     std::vector<uint8_t> inside(batch.size(), 0);
     std::atomic<uint64_t> shadowRays{0};
     parallelFor(int(batch.size()), threads_, [&](int slot) {
@@ -516,13 +506,12 @@ ProbeUpdateStats ProbeVolume::update(const Settings& s) {
                                      h.hit ? glm::vec3(0.0f) : uniformSky, sk, sk + irrTexels,
                                      sk + 2 * irrTexels, sk + 3 * irrTexels);
             }
-            if (hasRadiance) {
-                float* sh = &newSH[size_t(slot) * (kSH * 3 + 1)];
-                float y[kSH];
-                shBasis(d, y);
-                for (int k = 0; k < kSH; ++k)
-                    for (int c = 0; c < 3; ++c) sh[3 * k + c] += radiance[c] * y[k];
-                sh[kSH * 3] += 1.0f;
+            if (hasRadiance) {  // binned by direction: the texel of the octahedral map the ray leaves through
+                const glm::vec2 p = octahedral::encode(d) * 0.5f + 0.5f;
+                const int ti = std::min(int(p.x * float(radN_)), radN_ - 1), tj = std::min(int(p.y * float(radN_)), radN_ - 1);
+                float* rad = &newRad[(size_t(slot) * radTexels + size_t(std::max(tj, 0)) * radN_ + size_t(std::max(ti, 0))) * 4];
+                for (int c = 0; c < 3; ++c) rad[c] += radiance[c];
+                rad[3] += 1.0f;
             }
             if (hasRadiance)
                 accumulateIrradiance(irrTexels, irrDirs_.x.data(), irrDirs_.y.data(), irrDirs_.z.data(), d, radiance,
@@ -603,17 +592,23 @@ ProbeUpdateStats ProbeVolume::update(const Settings& s) {
                 }
             writeBorders(sky_, irrN_, 4, probe);
         }
-        // Order-2 harmonics of the radiance: 4 pi / rays x the sum (the rays are spread evenly over the sphere).
-        const float* sh = &newSH[slot * (kSH * 3 + 1)];
-        if (sh[kSH * 3] > 0.0f) {
-            const float norm = 4.0f * kPi / sh[kSH * 3];
-            float* dst = &radianceSH_[4 * (size_t(row) * tilesPerRow_ * kSH + size_t(tile) * kSH)];
-            for (int k = 0; k < kSH; ++k)
+        // The radiance per direction: each texel blends at its own pace (alpha = its count of updates with a ray
+        // through it), so a texel no ray crossed in the first updates does not stay at the first update's zero.
+        const float* rad = &newRad[slot * radTexels * 4];
+        const size_t radW = size_t(tilesPerRow_) * (radN_ + 2);
+        for (int j = 0; j < radN_; ++j)
+            for (int i = 0; i < radN_; ++i) {
+                const float* src = &rad[(size_t(j) * radN_ + i) * 4];
+                if (!(src[3] > 0.0f)) continue;
+                float* dst = &radiance_[4 * ((size_t(row) * (radN_ + 2) + 1 + j) * radW + size_t(tile) * (radN_ + 2) + 1 + i)];
+                const float kt = dst[3], at = std::min(hysteresis, kt / (kt + kRampUpdates));
                 for (int c = 0; c < 3; ++c) {
-                    const float v = norm * sh[3 * k + c];
-                    if (std::isfinite(v)) dst[4 * k + c] = alpha * dst[4 * k + c] + (1.0f - alpha) * v;
+                    const float v = src[c] / src[3];
+                    if (std::isfinite(v)) dst[c] = at * dst[c] + (1.0f - at) * v;
                 }
-        }
+                dst[3] = kt + 1.0f;
+            }
+        writeBorders(radiance_, radN_, 4, probe);
         writeBorders(irradiance_, irrN_, 4, probe);
         writeBorders(depth_, depthN_, 2, probe);
         ++updates_[probe];
@@ -721,7 +716,11 @@ void ProbeVolume::sceneChanged(bool restart) {
         // A probe placed elsewhere, or active again, sees other surfaces: its history is not its own.
         for (int probe : placeProbes(near)) {
             updates_[size_t(probe)] = 0;
-            const int row = probe / tilesPerRow_;
+            const int row = probe / tilesPerRow_, tile = probe % tilesPerRow_;
+            const size_t radW = size_t(tilesPerRow_) * (radN_ + 2);
+            for (int j = 0; j < radN_ + 2; ++j)  // its radiance texels' update counts: the next ray replaces each
+                for (int i = 0; i < radN_ + 2; ++i)
+                    radiance_[4 * ((size_t(row) * (radN_ + 2) + j) * radW + size_t(tile) * (radN_ + 2) + i) + 3] = 0.0f;
             dirtyRowLo_ = dirtyRowLo_ < dirtyRowHi_ ? std::min(dirtyRowLo_, row) : row;
             dirtyRowHi_ = std::max(dirtyRowHi_, row + 1);
             ++lastReplaced_;

@@ -19,11 +19,11 @@
 //                       r = mean distance, g = mean squared distance to the first surface (scene units).
 //   "Probe Data"        GL_RGBA32F, tilesPerRow x tileRows: xyz = the probe's offset from its grid position
 //                       (scene units), w = ProbeState as a float (1 = sampled; 0, -1 = not).
-//   "Probe Radiance SH" GL_RGBA32F, (tilesPerRow * 9) x tileRows: the radiance arriving at each probe per direction
-//                       as real spherical harmonics of order 2 (texel 9 * (i % tilesPerRow) + k, row i / tilesPerRow:
-//                       rgb = coefficient k, in the order Y00, Y1-1, Y10, Y11, Y2-2, Y2-1, Y20, Y21, Y22), projected
-//                       from the same rays and blended with the same hysteresis as the irradiance. The gather
-//                       subtracts the probes' estimate of the directions the screen covered (probeRadianceSH()).
+//   "Probe Radiance"    GL_RGBA32F, (tilesPerRow * (R+2)) x (tileRows * (R+2)), R = probes.radiance_texels: the
+//                       radiance arriving at each probe per octahedral direction (rgb; a = how many updates had a
+//                       ray through the texel, which sets the texel's own blend), the same rays binned by the texel
+//                       they leave through; a 1-texel border per tile. The gather fills the hemisphere sectors the
+//                       screen did not cover with it (radiance(); shaders/probe_volume.glsl probeRadianceAt()).
 // RGBA16F also works for the irradiance (uploadTextures() sends floats, the driver converts) while it stays below
 // 65504; the depth needs RG32F (squared distances pass 65504 at 256 scene units).
 //
@@ -81,7 +81,7 @@ struct ProbeVolumeUniforms {
     float lo[4];          // xyz grid corner; w = normal bias (scene units)
     float spacing[4];     // xyz per-axis spacing; w = 1 once every active probe has been updated, else 0
     int32_t counts[4];    // xyz probe counts; w = tiles per atlas row
-    int32_t texels[4];    // x = irradiance interior texels, y = depth interior texels, z = active probes
+    int32_t texels[4];    // x = irradiance interior texels, y = depth, z = active probes, w = radiance texels
 };
 static_assert(sizeof(ProbeVolumeUniforms) == 64, "std140 layout");
 
@@ -173,7 +173,7 @@ public:
     void uploadTextures(GLuint irradianceTex, GLuint depthTex, GLuint dataTex, bool all = false) {
         uploadTextures(irradianceTex, depthTex, dataTex, 0, all);
     }
-    void uploadTextures(GLuint irradianceTex, GLuint depthTex, GLuint dataTex, GLuint radianceSHTex, bool all);
+    void uploadTextures(GLuint irradianceTex, GLuint depthTex, GLuint dataTex, GLuint radianceTex, bool all);
     // glNamedBufferSubData of uniforms() into a uniform buffer of at least sizeof(ProbeVolumeUniforms).
     void uploadUniforms(GLuint uniformBuffer) const;
 
@@ -182,12 +182,14 @@ public:
     int tileRows() const { return tileRows_; }
     int irradianceTexels() const { return irrN_; }
     int depthTexels() const { return depthN_; }
+    int radianceTexels() const { return radN_; }
     const std::vector<float>& irradianceAtlas() const { return irradiance_; }  // RGBA
     const std::vector<float>& depthAtlas() const { return depth_; }            // RG
     const std::vector<float>& probeData() const { return data_; }              // RGBA
-    const std::vector<float>& radianceSH() const { return radianceSH_; }       // RGBA, 9 texels per probe
-    // Radiance arriving at world position x from direction dir (unit, pointing away from x), from the order-2
-    // harmonics of the probes around x weighted as irradiance() weighs them for a surface of normal n.
+    const std::vector<float>& radianceAtlas() const { return radiance_; }      // RGBA, as the irradiance atlas
+    // Radiance arriving at world position x from direction dir (unit, pointing away from x): the texel dir leaves
+    // through in the radiance atlas of each probe around x (unfiltered), weighted as irradiance() weighs them for
+    // a surface of normal n.
     glm::vec3 radiance(const glm::vec3& x, const glm::vec3& n, const glm::vec3& dir) const;
 
 private:
@@ -212,7 +214,7 @@ private:
     ProbeGrid grid_;
     uint64_t seed_;
     int threads_;
-    int irrN_, depthN_;
+    int irrN_, depthN_, radN_;
     float normalBias_, maxDistance_;
     int tilesPerRow_ = 1, tileRows_ = 1;
     std::vector<ProbeState> state_;
@@ -228,7 +230,7 @@ private:
     int activeCount_ = 0;
     size_t cursor_ = 0;  // round-robin position over the grid
     uint64_t updateIndex_ = 0;
-    std::vector<float> irradiance_, depth_, data_, radianceSH_;
+    std::vector<float> irradiance_, depth_, data_, radiance_;
     std::vector<float> sky_;  // the sky irradiance atlas (RGBA), empty without an environment
     // The map's share of the sky, importance-sampled (a small sun is caught by few of the probe rays): built when
     // the map or environment.intensity changes.

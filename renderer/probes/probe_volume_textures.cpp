@@ -18,8 +18,9 @@ std::vector<ProbeTextureDesc> ProbeVolume::textures() const {
         {"Probe Data", GL_RGBA32F, GL_RGBA, tilesPerRow_, tileRows_, 4, data_.data(),
          "Per probe: xyz = offset from its grid position (scene units), w = state (1 active, 0 inside geometry, "
          "-1 unused)"},
-        {"Probe Radiance SH", GL_RGBA32F, GL_RGBA, tilesPerRow_ * 9, tileRows_, 4, radianceSH_.data(),
-         "Radiance arriving at each probe as order-2 spherical harmonics: 9 texels per probe, rgb = coefficient"},
+        {"Probe Radiance", GL_RGBA32F, GL_RGBA, tilesPerRow_ * (radN_ + 2), tileRows_ * (radN_ + 2), 4, radiance_.data(),
+         "Radiance arriving at each probe per octahedral direction (rgb; a = updates with a ray through the texel), " +
+             std::to_string(radN_) + "x" + std::to_string(radN_) + " texels + border per tile"},
     };
 }
 
@@ -60,10 +61,11 @@ ProbeVolumeUniforms ProbeVolume::uniforms() const {
     u.texels[0] = irrN_;
     u.texels[1] = depthN_;
     u.texels[2] = activeProbeCount();
+    u.texels[3] = radN_;
     return u;
 }
 
-void ProbeVolume::uploadTextures(GLuint irradianceTex, GLuint depthTex, GLuint dataTex, GLuint radianceSHTex, bool all) {
+void ProbeVolume::uploadTextures(GLuint irradianceTex, GLuint depthTex, GLuint dataTex, GLuint radianceTex, bool all) {
     if (all || !uploadedOnce_) {
         dirtyRowLo_ = 0;
         dirtyRowHi_ = tileRows_;
@@ -78,7 +80,7 @@ void ProbeVolume::uploadTextures(GLuint irradianceTex, GLuint depthTex, GLuint d
     glPixelStorei(GL_UNPACK_SKIP_ROWS, 0);
     glPixelStorei(GL_UNPACK_SKIP_PIXELS, 0);
     const std::vector<ProbeTextureDesc> descs = textures();
-    const GLuint ids[4] = {irradianceTex, depthTex, dataTex, radianceSHTex};
+    const GLuint ids[4] = {irradianceTex, depthTex, dataTex, radianceTex};
     if (dirtyRowLo_ < dirtyRowHi_)
         for (int t = 0; t < 4; ++t) {
             if (!ids[t]) continue;
