@@ -49,5 +49,6 @@ vec3 environmentBackdrop(vec2 fragCoord) {
 uniform sampler2D uProbeSky;
 
 // probeIrradianceWeighted()'s probes and weights over the sky atlas; C++: ProbeVolume::skyIrradiance().
-vec3 probeSkyIrradiance(vec3 X, vec3 n) { return probeAtlasWeighted(uProbeSky, X, n).rgb; }
+vec3 probeSkyIrradiance(vec3 X, vec3 n, vec3 V) { return probeAtlasWeighted(uProbeSky, X, n, V).rgb; }
+vec3 probeSkyIrradiance(vec3 X, vec3 n) { return probeSkyIrradiance(X, n, vec3(0.0)); }
 #endif

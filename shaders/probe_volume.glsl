@@ -8,13 +8,14 @@
 //
 // Inputs (the including shader may #define the binding points before including this file):
 //   uniform block ProbeVolumeUniforms, std140, binding PROBE_VOLUME_UBO_BINDING (default 2), filled from
-//     ProbeVolume::uniforms() (C++ struct ProbeVolumeUniforms, 64 bytes):
+//     ProbeVolume::uniforms() (C++ struct ProbeVolumeUniforms, 80 bytes):
 //       vec4  uProbeLo;       xyz = corner of the covered box (probe (0,0,0) is at uProbeLo + spacing/2),
 //                             w = normal bias (scene units)
 //       vec4  uProbeSpacing;  xyz = spacing per axis (scene units), w = 1 once every active probe was updated
 //       ivec4 uProbeCounts;   xyz = probes per axis, w = atlas tiles per row (probe i: tile (i % w, i / w))
 //       ivec4 uProbeTexels;   x = irradiance interior texels I, y = depth interior texels D, z = active probes,
 //                             w = radiance interior texels R
+//       vec4  uProbeBias;     x = normal bias, y = view bias (scene units)
 //   sampler2D uProbeIrradiance  unit PROBE_IRRADIANCE_UNIT (default 2): "Probe Irradiance", RGBA32F,
 //                               tiles of (I+2)^2 texels, GL_LINEAR, clamp to edge
 //   sampler2D uProbeDepth       unit PROBE_DEPTH_UNIT (default 3): "Probe Depth", RG32F, tiles of (D+2)^2,
@@ -45,6 +46,7 @@ layout(std140, binding = PROBE_VOLUME_UBO_BINDING) uniform ProbeVolumeUniforms {
     vec4 uProbeSpacing;
     ivec4 uProbeCounts;
     ivec4 uProbeTexels;
+    vec4 uProbeBias;
 };
 #ifdef PROBE_VOLUME_FIXED_UNITS  // standalone use (tests); in the pipeline the renderer assigns units from the table
 layout(binding = PROBE_IRRADIANCE_UNIT) uniform sampler2D uProbeIrradiance;
@@ -60,6 +62,16 @@ uniform sampler2D uProbeRadiance;
 
 float probeSignNotZero(float v) { return v >= 0.0 ? 1.0 : -1.0; }
 
+#ifndef PROBE_VOLUME_FIXED_UNITS  // in the pipeline (common.glsl's frame uniforms)
+// Unit direction from X towards the camera (orthographic: against its forward axis): the probes' view bias.
+vec3 probeViewerDirection(vec3 X) {
+    if (uCameraPos.w < 0.5) return -normalize(uCameraForward.xyz);
+    vec3 v = uCameraPos.xyz - X;
+    float len = length(v);
+    return len > 0.0 ? v / len : vec3(0.0);
+}
+#endif
+
 // Unit direction -> [-1,1]^2 (renderer/probes/octahedral.h).
 vec2 probeOctEncode(vec3 d) {
     vec2 p = d.xy / (abs(d.x) + abs(d.y) + abs(d.z));
@@ -74,14 +86,15 @@ vec2 probeAtlasUv(int probe, int n, vec3 d, vec2 atlasSize) {
     return (origin + (probeOctEncode(d) * 0.5 + 0.5) * float(n)) / atlasSize;
 }
 
-// The cell of probes around X (surface normal n): its first corner, the trilinear fractions, the biased receiver.
-bool probeCell(vec3 X, vec3 n, out ivec3 base, out vec3 alpha, out vec3 biased) {
+// The cell of probes around X (surface normal n, seen from unit direction V, or V = 0): its first corner, the
+// trilinear fractions, the biased receiver (moved along n and towards its viewer: C++ ProbeVolume::probeWeights).
+bool probeCell(vec3 X, vec3 n, vec3 V, out ivec3 base, out vec3 alpha, out vec3 biased) {
     base = ivec3(0);
     alpha = vec3(0.0);
     biased = X;
     if (any(isnan(X)) || any(isinf(X)) || any(isnan(n)) || any(isinf(n)) || !(dot(n, n) > 1e-12)) return false;
     ivec3 last = uProbeCounts.xyz - 1;
-    biased = X + n * uProbeLo.w;
+    biased = X + n * uProbeBias.x + V * uProbeBias.y;
     vec3 g = clamp((biased - uProbeLo.xyz) / uProbeSpacing.xyz - 0.5, vec3(-1.0), vec3(last));
     base = clamp(ivec3(floor(g)), ivec3(0), last - 1);
     alpha = clamp(g - vec3(base), 0.0, 1.0);
@@ -124,11 +137,11 @@ int probeCorner(int i, ivec3 base, vec3 alpha, vec3 X, vec3 n, vec3 biased, vec2
 }
 
 // The 8 probes' weighted mean of an atlas laid out as the irradiance one (irradiance, sky), with the weights' sum in
-// w; C++: weightedAtlasIrradiance over probeWeights.
-vec4 probeAtlasWeighted(sampler2D atlas, vec3 X, vec3 n) {
+// w; C++: weightedAtlasIrradiance over probeWeights. V: the unit direction towards the receiver's viewer (0: none).
+vec4 probeAtlasWeighted(sampler2D atlas, vec3 X, vec3 n, vec3 V) {
     ivec3 base;
     vec3 alpha, biased;
-    if (!probeCell(X, n, base, alpha, biased)) return vec4(0.0);
+    if (!probeCell(X, n, V, base, alpha, biased)) return vec4(0.0);
     vec2 atlasSize = vec2(textureSize(atlas, 0)), depthSize = vec2(textureSize(uProbeDepth, 0));
     vec3 sum = vec3(0.0);
     float total = 0.0;
@@ -142,20 +155,23 @@ vec4 probeAtlasWeighted(sampler2D atlas, vec3 X, vec3 n) {
     return total > 0.0 ? vec4(sum / total, total) : vec4(0.0);
 }
 
+vec4 probeAtlasWeighted(sampler2D atlas, vec3 X, vec3 n) { return probeAtlasWeighted(atlas, X, n, vec3(0.0)); }
+
 vec4 probeIrradianceWeighted(vec3 X, vec3 n) { return probeAtlasWeighted(uProbeIrradiance, X, n); }
 
-vec3 probeIrradiance(vec3 X, vec3 n) { return probeIrradianceWeighted(X, n).rgb; }
+vec3 probeIrradiance(vec3 X, vec3 n, vec3 V) { return probeAtlasWeighted(uProbeIrradiance, X, n, V).rgb; }
+vec3 probeIrradiance(vec3 X, vec3 n) { return probeIrradiance(X, n, vec3(0.0)); }
 
 // The 8 probes around X (surface normal n) and their normalised weights (probe -1: none), once per receiver, for
 // probeRadianceAt() in as many directions as needed. False where no probe answers.
-bool probeSetAt(vec3 X, vec3 n, out int probes[8], out float weights[8]) {
+bool probeSetAt(vec3 X, vec3 n, vec3 V, out int probes[8], out float weights[8]) {
     for (int i = 0; i < 8; ++i) {
         probes[i] = -1;
         weights[i] = 0.0;
     }
     ivec3 base;
     vec3 alpha, biased;
-    if (!probeCell(X, n, base, alpha, biased)) return false;
+    if (!probeCell(X, n, V, base, alpha, biased)) return false;
     vec2 depthSize = vec2(textureSize(uProbeDepth, 0));
     float total = 0.0;
     for (int i = 0; i < 8; ++i) {

@@ -262,7 +262,8 @@ void main() {
     // direction in the sector, new per pixel and frame (the blur and the temporal filter average them).
     int fillProbes[8];
     float fillWeights[8];
-    bool fill = probeSetAt(X, nX, fillProbes, fillWeights);
+    vec3 V = probeViewerDirection(X);  // the probes' view bias: towards the camera, the surface's visible side
+    bool fill = probeSetAt(X, nX, V, fillProbes, fillWeights);
     vec3 fillSum = vec3(0.0);
     uint seed = fillHash(uint(pix.x) * 1973u + uint(pix.y) * 9277u + floatBitsToUint(uTime) * 26699u);
     // Sectors whose taps' patches overfill them are rescaled to the sector.
@@ -288,7 +289,7 @@ void main() {
     covered = clamp(covered, 0.0, 1.0);
 #if defined(DEEPGI_PROBES) && !defined(DEEPGI_PROBE_DIRECTIONAL_FILL)
     // The directions the screen did not cover (off screen, beyond the radius, hidden) take the probes' light.
-    sum += (1.0 - covered) * probeIrradiance(X, nX);
+    sum += (1.0 - covered) * probeIrradiance(X, nX, V);
 #endif
     oIrradiance = sanitizeR11G11B10(sum, gl_FragCoord.xy);
     oCoverage = covered;

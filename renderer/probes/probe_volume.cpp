@@ -163,7 +163,8 @@ bool ProbeVolume::layoutChanged(const Settings& a, const Settings& b) {
            a.probeMaxCount != b.probeMaxCount || a.probeIrradianceTexels != b.probeIrradianceTexels ||
            a.probeDepthTexels != b.probeDepthTexels || a.probeRadianceTexels != b.probeRadianceTexels ||
            a.probeInsideFraction != b.probeInsideFraction ||
-           a.probeMaxRelocation != b.probeMaxRelocation || a.probeNormalBias != b.probeNormalBias;
+           a.probeMaxRelocation != b.probeMaxRelocation || a.probeNormalBias != b.probeNormalBias ||
+           a.probeViewBias != b.probeViewBias;
 }
 
 ProbeVolume::ProbeVolume(const Scene& scene, const Settings& s, uint64_t seed, int threads)
@@ -173,6 +174,7 @@ ProbeVolume::ProbeVolume(const Scene& scene, const Settings& s, uint64_t seed, i
     depthN_ = std::min(std::max(s.probeDepthTexels, 2), 64);
     radN_ = std::min(std::max(s.probeRadianceTexels, 2), 64);
     normalBias_ = s.probeNormalBias * grid_.minSpacing();
+    viewBias_ = s.probeViewBias * grid_.minSpacing();
     maxDistance_ = 1.5f * glm::length(grid_.spacing);
     const int n = grid_.count();
     tilesPerRow_ = std::max(1, int(std::ceil(std::sqrt(double(n)))));
@@ -352,13 +354,14 @@ glm::vec<C, float> ProbeVolume::sampleAtlas(const std::vector<float>& atlas, int
     return r;
 }
 
-float ProbeVolume::probeWeights(const glm::vec3& x, const glm::vec3& n, int probes[8], float weights[8]) const {
+float ProbeVolume::probeWeights(const glm::vec3& x, const glm::vec3& n, int probes[8], float weights[8],
+                                 const glm::vec3& view) const {
     for (int i = 0; i < 8; ++i) {
         probes[i] = -1;
         weights[i] = 0.0f;
     }
     if (!finite3(x) || !finite3(n) || !(glm::dot(n, n) > 1e-12f)) return 0.0f;
-    const glm::vec3 biased = x + n * normalBias_;
+    const glm::vec3 biased = x + n * normalBias_ + (finite3(view) ? view * viewBias_ : glm::vec3(0.0f));
     const glm::ivec3 last = grid_.counts - 1;
     const glm::vec3 g = glm::clamp((biased - grid_.lo) / grid_.spacing - 0.5f, glm::vec3(-1.0f), glm::vec3(last));
     const glm::ivec3 base = glm::clamp(glm::ivec3(glm::floor(g)), glm::ivec3(0), last - 1);
@@ -401,8 +404,8 @@ float ProbeVolume::probeWeights(const glm::vec3& x, const glm::vec3& n, int prob
     return total;
 }
 
-glm::vec3 ProbeVolume::irradiance(const glm::vec3& x, const glm::vec3& n, float* weightSum) const {
-    return weightedAtlasIrradiance(irradiance_, x, n, weightSum);
+glm::vec3 ProbeVolume::irradiance(const glm::vec3& x, const glm::vec3& n, float* weightSum, const glm::vec3& view) const {
+    return weightedAtlasIrradiance(irradiance_, x, n, weightSum, view);
 }
 
 glm::vec3 ProbeVolume::radiance(const glm::vec3& x, const glm::vec3& n, const glm::vec3& dir) const {
@@ -630,21 +633,21 @@ ProbeUpdateStats ProbeVolume::update(const Settings& s) {
     return stats;
 }
 
-glm::vec3 ProbeVolume::skyIrradiance(const glm::vec3& x, const glm::vec3& n, float* weightSum) const {
+glm::vec3 ProbeVolume::skyIrradiance(const glm::vec3& x, const glm::vec3& n, float* weightSum, const glm::vec3& view) const {
     if (sky_.empty()) {
         if (weightSum) *weightSum = 0.0f;
         return glm::vec3(0.0f);
     }
-    return weightedAtlasIrradiance(sky_, x, n, weightSum);
+    return weightedAtlasIrradiance(sky_, x, n, weightSum, view);
 }
 
 // An irradiance-layout atlas (the bounce's or the sky's) at x, n, weighted by probeWeights (trilinear, back-face,
 // Chebyshev visibility, crush); shaders/probe_volume.glsl and environment.glsl are the GLSL side.
 glm::vec3 ProbeVolume::weightedAtlasIrradiance(const std::vector<float>& atlas, const glm::vec3& x, const glm::vec3& n,
-                                               float* weightSum) const {
+                                               float* weightSum, const glm::vec3& view) const {
     int probes[8];
     float weights[8];
-    const float total = probeWeights(x, n, probes, weights);
+    const float total = probeWeights(x, n, probes, weights, view);
     if (weightSum) *weightSum = total;
     const glm::vec2 octN = octahedral::encode(glm::dot(n, n) > 1e-12f ? n : glm::vec3(0, 0, 1));
     glm::vec3 sum(0.0f);

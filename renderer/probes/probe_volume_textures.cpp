@@ -56,6 +56,8 @@ ProbeVolumeUniforms ProbeVolume::uniforms() const {
         u.counts[a] = grid_.counts[a];
     }
     u.lo[3] = normalBias_;
+    u.bias[0] = normalBias_;
+    u.bias[1] = viewBias_;
     u.spacing[3] = converging() ? 0.0f : 1.0f;
     u.counts[3] = tilesPerRow_;
     u.texels[0] = irrN_;
