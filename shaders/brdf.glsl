@@ -26,10 +26,3 @@ vec3 ggxSpecular(vec3 n, vec3 v, vec3 l, vec3 f0, float roughness) {
     vec3 h = normalize(v + l);
     return schlickF(f0, dot(v, h)) * (ggxD(max(dot(n, h), 0.0), alpha) * smithV(nl, nv, alpha));
 }
-// Unit direction from P to the camera (perspective) or against the view axis (orthographic).
-vec3 viewDirection(vec3 P) {
-    if (uCameraPos.w < 0.5) return -normalize(uCameraForward.xyz);
-    vec3 v = uCameraPos.xyz - P;
-    float len = length(v);
-    return len > 0.0 ? v / len : -normalize(uCameraForward.xyz);
-}

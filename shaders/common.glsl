@@ -17,6 +17,14 @@ layout(std140, binding = 0) uniform FrameUniforms {
     vec4 uRadiosityGrid;  // x = d: radiosity pixel p stands for screen pixel p * d + d / 2; yz = the grid's size
 };
 
+// Unit direction from P to the camera (perspective) or against the view axis (orthographic).
+vec3 viewDirection(vec3 P) {
+    if (uCameraPos.w < 0.5) return -normalize(uCameraForward.xyz);
+    vec3 v = uCameraPos.xyz - P;
+    float len = length(v);
+    return len > 0.0 ? v / len : -normalize(uCameraForward.xyz);
+}
+
 // The screen pixel a radiosity-grid pixel stands for (itself at full resolution).
 ivec2 screenPixelOfRadiosity(ivec2 p) {
     int d = int(uRadiosityGrid.x);

@@ -39,12 +39,12 @@ void main() {
 #else
     vec3 E = directIrradiance(P, n);
 #endif
+    // Layer 1 is seen by the camera: the probes' view bias moves it towards the camera (layer 2: along n only).
+    vec3 probeView = uLayer == 0 ? viewDirection(P) : vec3(0.0);
 #ifdef DEEPGI_SKY
     // The sky is direct light too (shown by the composite, bounced by the gather); an occlusion texture darkens it
     // as it does indirect light.
-    // Layer 1 is seen by the camera: the probes' view bias moves it towards the camera (layer 2: along n only).
-    vec3 V = uLayer == 0 ? probeViewerDirection(P) : vec3(0.0);
-    vec3 Esky = probeSkyIrradiance(P, n, V);
+    vec3 Esky = probeSkyIrradiance(P, n, probeView);
 #ifdef OCCLUSION
     Esky *= texelFetch(uOcclusion, ivec3(pix, uLayer), 0).r;
 #endif
@@ -55,7 +55,7 @@ void main() {
     if (uFeedback != 0 && uLayer == 0) Eind = (1.0 - uDamping) * texelFetch(uReprojected, radiosityPixelOfScreen(pix), 0).rgb;
 #ifdef DEEPGI_PROBES
     // Layer 2 has no gathered light of its own, nor layer 1 before there is a history: the probes give theirs.
-    else Eind = (1.0 - uDamping) * probeIrradiance(P, n, uLayer == 0 ? probeViewerDirection(P) : vec3(0.0));
+    else Eind = (1.0 - uDamping) * probeIrradiance(P, n, probeView);
 #endif
 #ifdef OCCLUSION
     Eind *= texelFetch(uOcclusion, ivec3(pix, uLayer), 0).r;  // occlusion textures darken indirect light only

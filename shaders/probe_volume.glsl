@@ -9,8 +9,7 @@
 // Inputs (the including shader may #define the binding points before including this file):
 //   uniform block ProbeVolumeUniforms, std140, binding PROBE_VOLUME_UBO_BINDING (default 2), filled from
 //     ProbeVolume::uniforms() (C++ struct ProbeVolumeUniforms, 80 bytes):
-//       vec4  uProbeLo;       xyz = corner of the covered box (probe (0,0,0) is at uProbeLo + spacing/2),
-//                             w = normal bias (scene units)
+//       vec4  uProbeLo;       xyz = corner of the covered box (probe (0,0,0) is at uProbeLo + spacing/2), w unused
 //       vec4  uProbeSpacing;  xyz = spacing per axis (scene units), w = 1 once every active probe was updated
 //       ivec4 uProbeCounts;   xyz = probes per axis, w = atlas tiles per row (probe i: tile (i % w, i / w))
 //       ivec4 uProbeTexels;   x = irradiance interior texels I, y = depth interior texels D, z = active probes,
@@ -61,16 +60,6 @@ uniform sampler2D uProbeRadiance;
 #endif
 
 float probeSignNotZero(float v) { return v >= 0.0 ? 1.0 : -1.0; }
-
-#ifndef PROBE_VOLUME_FIXED_UNITS  // in the pipeline (common.glsl's frame uniforms)
-// Unit direction from X towards the camera (orthographic: against its forward axis): the probes' view bias.
-vec3 probeViewerDirection(vec3 X) {
-    if (uCameraPos.w < 0.5) return -normalize(uCameraForward.xyz);
-    vec3 v = uCameraPos.xyz - X;
-    float len = length(v);
-    return len > 0.0 ? v / len : vec3(0.0);
-}
-#endif
 
 // Unit direction -> [-1,1]^2 (renderer/probes/octahedral.h).
 vec2 probeOctEncode(vec3 d) {

@@ -262,7 +262,7 @@ void main() {
     // direction in the sector, new per pixel and frame (the blur and the temporal filter average them).
     int fillProbes[8];
     float fillWeights[8];
-    vec3 V = probeViewerDirection(X);  // the probes' view bias: towards the camera, the surface's visible side
+    vec3 V = viewDirection(X);  // the probes' view bias: towards the camera, the surface's visible side
     bool fill = probeSetAt(X, nX, V, fillProbes, fillWeights);
     vec3 fillSum = vec3(0.0);
     uint seed = fillHash(uint(pix.x) * 1973u + uint(pix.y) * 9277u + floatBitsToUint(uTime) * 26699u);

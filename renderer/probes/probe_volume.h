@@ -78,7 +78,7 @@ struct ProbeUpdateStats {
 
 // std140 mirror of the GLSL block ProbeVolumeUniforms (shaders/probe_volume.glsl).
 struct ProbeVolumeUniforms {
-    float lo[4];          // xyz grid corner; w = normal bias (scene units)
+    float lo[4];          // xyz grid corner; w unused
     float spacing[4];     // xyz per-axis spacing; w = 1 once every active probe has been updated, else 0
     int32_t counts[4];    // xyz probe counts; w = tiles per atlas row
     int32_t texels[4];    // x = irradiance interior texels, y = depth, z = active probes, w = radiance texels

@@ -55,7 +55,6 @@ ProbeVolumeUniforms ProbeVolume::uniforms() const {
         u.spacing[a] = grid_.spacing[a];
         u.counts[a] = grid_.counts[a];
     }
-    u.lo[3] = normalBias_;
     u.bias[0] = normalBias_;
     u.bias[1] = viewBias_;
     u.spacing[3] = converging() ? 0.0f : 1.0f;
