@@ -135,7 +135,7 @@ public:
     // weightSum (optional) receives the total weight of the probes used (0 = no probe could answer). view: the
     // unit direction from x towards the camera that sees it, 0 = none: the receiver is moved probes.view_bias x
     // spacing along it before the visibility test (DDGI's view bias, against leaks through thin walls; the probes'
-    // own bounce at their rays' hits uses none: with it, multi-bounce rose 5-7 % on the lit hard scenes).
+    // own bounce at their rays' hits uses none: with it, the sun patch's multi-bounce ratio rose 1.055 -> 1.126).
     glm::vec3 irradiance(const glm::vec3& x, const glm::vec3& n, float* weightSum = nullptr,
                          const glm::vec3& view = glm::vec3(0.0f)) const;
 
