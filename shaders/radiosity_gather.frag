@@ -166,6 +166,9 @@ void main() {
     vec4 c = uInvViewProj[3] - uInvViewProj[0] - uInvViewProj[1];
     bool twoLayers = uUseLayer2 != 0;
     float zX = eyeZ(X);
+#ifdef DEEPGI_PROBES
+    vec3 V = viewDirection(X);  // the probes' view bias: towards the camera, the surface's visible side
+#endif
     vec3 sum = vec3(0.0);
     float covered = 0.0;
 #ifdef DEEPGI_PROBE_DIRECTIONAL_FILL
@@ -262,7 +265,6 @@ void main() {
     // direction in the sector, new per pixel and frame (the blur and the temporal filter average them).
     int fillProbes[8];
     float fillWeights[8];
-    vec3 V = viewDirection(X);  // the probes' view bias: towards the camera, the surface's visible side
     bool fill = probeSetAt(X, nX, V, fillProbes, fillWeights);
     vec3 fillSum = vec3(0.0);
     uint seed = fillHash(uint(pix.x) * 1973u + uint(pix.y) * 9277u + floatBitsToUint(uTime) * 26699u);
