@@ -2,8 +2,7 @@
 // One direction of the separable bilateral blur (G3D's reconstruction filter, technique.md 1.9): Gaussian taps
 // weighted by normal and plane-distance agreement with the centre, optionally monotonically decreasing.
 #include "common.glsl"
-uniform sampler2DArray uDepth;
-uniform sampler2DArray uNormal;
+uniform sampler2D uGeometry;  // Radiosity Geometry: each grid pixel's world position and normal, from the gather
 uniform sampler2D uSource;
 uniform ivec2 uAxis;
 const int MAX_BLUR_RADIUS = 6;  // blur.radius
@@ -16,19 +15,11 @@ uniform float uPlaneEpsilon2;  // squared distance under which a tap is trusted 
 layout(location = 0) out vec3 oValue;
 
 // World position of the surface a radiosity-grid pixel stands for.
-vec3 position(ivec2 p, out bool sky) {
-    ivec2 s = screenPixelOfRadiosity(p);
-    float d = texelFetch(uDepth, ivec3(s, 0), 0).r;
-    sky = isSky(d);
-    return worldFromDepth(vec2(s) + 0.5, d, uInvViewProj);
-}
-vec3 normalAt(ivec2 p) { return octDecode(texelFetch(uNormal, ivec3(screenPixelOfRadiosity(p), 0), 0).rg); }
-
 float bilateral(vec3 C, vec3 nC, ivec2 tp) {
-    bool sky;
-    vec3 T = position(tp, sky);
-    if (sky) return 0.0;
-    vec3 nT = normalAt(tp);
+    vec4 g = texelFetch(uGeometry, tp, 0);
+    if (g.w < 0.0) return 0.0;  // sky
+    vec3 T = g.xyz;
+    vec3 nT = unpackNormalCode(g.w);
     float normalW = max(0.0, 1.0 - uEdgeSharpness * 40.0 * (1.0 - dot(nC, nT)));
     vec3 dq = C - T;
     float dd = dot(dq, dq);
@@ -43,11 +34,11 @@ float bilateral(vec3 C, vec3 nC, ivec2 tp) {
 
 void main() {
     ivec2 pix = ivec2(gl_FragCoord.xy);
-    bool sky;
-    vec3 C = position(pix, sky);
+    vec4 g = texelFetch(uGeometry, pix, 0);
     vec3 centre = texelFetch(uSource, pix, 0).rgb;
-    if (sky) { oValue = centre; return; }
-    vec3 nC = normalAt(pix);
+    if (g.w < 0.0) { oValue = centre; return; }  // sky
+    vec3 C = g.xyz;
+    vec3 nC = unpackNormalCode(g.w);
     ivec2 size = ivec2(uRadiosityGrid.yz);
     vec3 sum = centre * uKernel[0];
     float total = uKernel[0];

@@ -108,6 +108,16 @@ vec3 octDecode(vec2 e) {
 
 bool isSky(float d) { return d >= 1.0; }
 
+// A Normal texel (RG8_SNORM, octahedral) as one float, its two bytes exactly: Radiosity Geometry's w (sky: -1).
+float packNormalCode(vec2 e) {
+    ivec2 k = clamp(ivec2(round(e * 127.0)), ivec2(-127), ivec2(127)) + 128;
+    return float(k.x * 256 + k.y);
+}
+vec3 unpackNormalCode(float c) {
+    int k = int(c);
+    return octDecode(vec2(ivec2(k >> 8, k & 255) - 128) / 127.0);
+}
+
 // The spiral taps of the gather and the AO (technique.md 1.6): G3D's per-pixel rotation phi and radial jitter
 // (optionally varied with time), and tap i of n: its radius h (pixels, uniform in [0, rss]) and unit direction.
 void spiralPixel(ivec2 pix, vec2 fragCoord, float time, out float phi, out float jitter) {

@@ -9,6 +9,7 @@ uniform sampler2DArray uNormal;
 uniform sampler2DArray uEmission;
 uniform sampler2DArray uRadiance;   // Input Radiance 1/2
 uniform sampler2D uIndirect;        // Output Radiance
+uniform sampler2D uGeometry;        // Radiosity Geometry (a coarser radiosity grid only): the grid's positions, normals
 uniform sampler2D uDirect;          // Direct Radiance: rho/pi * shadowed E_direct of layer 1 (+ GGX specular)
 #ifdef OCCLUSION
 uniform sampler2DArray uOcclusion;  // the material's occlusion texture: darkens indirect light only
@@ -44,11 +45,10 @@ vec3 indirectAt(ivec2 pix, vec3 P, vec3 n) {
     for (int k = 0; k < 4; ++k) {
         ivec2 o = ivec2(k & 1, k >> 1);
         ivec2 q = clamp(b + o, ivec2(0), grid - 1);
-        ivec2 s = screenPixelOfRadiosity(q);
-        float ds = texelFetch(uDepth, ivec3(s, 0), 0).r;
-        if (isSky(ds)) continue;
-        vec3 Ps = worldFromDepth(vec2(s) + 0.5, ds, uInvViewProj);
-        vec3 ns = octDecode(texelFetch(uNormal, ivec3(s, 0), 0).rg);
+        vec4 g = texelFetch(uGeometry, q, 0);
+        if (g.w < 0.0) continue;  // sky
+        vec3 Ps = g.xyz;
+        vec3 ns = unpackNormalCode(g.w);
         float plane = abs(dot(Ps - P, n)) / (0.005 * z);  // off this pixel's plane, in units of 0.5 % of its depth
         float facing = max(dot(n, ns), 0.0);
         float err = plane + (1.0 - facing) * 20.0;

@@ -59,6 +59,13 @@ uniform sampler2D uProbeData;
 uniform sampler2D uProbeRadiance;
 #endif
 
+// A probe's tile (column, row) in an atlas. Float division: llvmpipe runs it on all lanes at once, an integer
+// division one lane at a time. Exact for fewer than 2^22 probes (the row is at most probes / columns).
+ivec2 probeTile(int probe) {
+    int row = int((float(probe) + 0.5) / float(uProbeCounts.w));
+    return ivec2(probe - row * uProbeCounts.w, row);
+}
+
 float probeSignNotZero(float v) { return v >= 0.0 ? 1.0 : -1.0; }
 
 // Unit direction -> [-1,1]^2 (renderer/probes/octahedral.h).
@@ -71,7 +78,7 @@ vec2 probeOctEncode(vec3 d) {
 // Texture coordinate of direction d in probe `probe`'s tile of an atlas with n interior texels per tile edge.
 vec2 probeAtlasUv(int probe, int n, vec3 d, vec2 atlasSize) {
     int tile = n + 2;
-    vec2 origin = vec2((probe % uProbeCounts.w) * tile + 1, (probe / uProbeCounts.w) * tile + 1);
+    vec2 origin = vec2(probeTile(probe) * tile + 1);
     return (origin + (probeOctEncode(d) * 0.5 + 0.5) * float(n)) / atlasSize;
 }
 
@@ -96,7 +103,7 @@ int probeCorner(int i, ivec3 base, vec3 alpha, vec3 X, vec3 n, vec3 biased, vec2
     ivec3 o = ivec3(i & 1, (i >> 1) & 1, (i >> 2) & 1);
     ivec3 c = base + o;
     int probe = c.x + uProbeCounts.x * (c.y + uProbeCounts.y * c.z);
-    vec4 data = texelFetch(uProbeData, ivec2(probe % uProbeCounts.w, probe / uProbeCounts.w), 0);
+    vec4 data = texelFetch(uProbeData, probeTile(probe), 0);
     if (data.w < 0.5) return -1;  // inside geometry or unused
     vec3 probePos = uProbeLo.xyz + (vec3(c) + 0.5) * uProbeSpacing.xyz + data.xyz;
     vec3 tri3 = mix(1.0 - alpha, alpha, vec3(o));
@@ -190,7 +197,7 @@ vec3 probeRadianceAt(int probes[8], float weights[8], vec3 d) {
     vec3 sum = vec3(0.0);
     for (int i = 0; i < 8; ++i)
         if (probes[i] >= 0) {
-            ivec2 origin = ivec2((probes[i] % uProbeCounts.w) * (n + 2) + 1, (probes[i] / uProbeCounts.w) * (n + 2) + 1);
+            ivec2 origin = probeTile(probes[i]) * (n + 2) + 1;
             sum += weights[i] * texelFetch(uProbeRadiance, origin + t, 0).rgb;
         }
     return sum;

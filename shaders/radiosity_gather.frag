@@ -24,6 +24,7 @@ uniform int uUseLayer2;
 uniform float uTime;  // varies the pattern per frame when temporally varying taps
 layout(location = 0) out vec3 oIrradiance;
 layout(location = 1) out float oCoverage;
+layout(location = 2) out vec4 oGeometry;  // Radiosity Geometry: X, packNormalCode(its Normal texel); sky: w = -1
 uniform float uThickness;      // assumed thickness behind a layer-1 surface where layer 2 does not bound it
 const int MAX_VISIBILITY_STEPS = 16;  // radiosity.visibility_steps
 uniform int uVisibilitySteps;  // march steps per tap (0 = no visibility test)
@@ -149,9 +150,11 @@ void tapLayer(int j, ivec2 T, int m, vec4 h0, vec4 hz, vec3 X, vec3 nX, float r2
 void main() {
     ivec2 pix = screenPixelOfRadiosity(ivec2(gl_FragCoord.xy));  // taps and patches in screen pixels at any grid
     float d = texelFetch(uDepth, ivec3(pix, 0), 0).r;
-    if (isSky(d)) { oIrradiance = vec3(0.0); oCoverage = 0.0; return; }
+    if (isSky(d)) { oIrradiance = vec3(0.0); oCoverage = 0.0; oGeometry = vec4(0.0, 0.0, 0.0, -1.0); return; }
     vec3 X = worldFromDepth(vec2(pix) + 0.5, d, uInvViewProj);
-    vec3 nX = octDecode(texelFetch(uNormal, ivec3(pix, 0), 0).rg);
+    vec2 nCode = texelFetch(uNormal, ivec3(pix, 0), 0).rg;
+    vec3 nX = octDecode(nCode);
+    oGeometry = vec4(X, packNormalCode(nCode));
     float z = eyeDepthCurrent(d);
     float rss = uCameraPos.w > 0.5 ? uClip.z * uRadius / max(z, 1e-30) : uClip.z * uRadius;
     rss = min(rss, 4.0 * max(uViewport.x, uViewport.y));  // beyond the screen no tap finds data

@@ -350,7 +350,7 @@ TEST_F(GLTest, GraphListsThePipelineInOrder) {
                                                "Temporal blend", "Composite"}));
     const auto& gather = g[6];
     EXPECT_EQ(gather.reads, (std::vector<std::string>{"Depth", "Normal", "Input Radiance", "Probe Irradiance", "Probe Depth", "Probe Data", "Probe Radiance"}));
-    EXPECT_EQ(gather.writes, (std::vector<std::string>{"Output Radiance", "Gather Coverage"}));
+    EXPECT_EQ(gather.writes, (std::vector<std::string>{"Output Radiance", "Gather Coverage", "Radiosity Geometry"}));
     // Units are distinct within a pass and never the material textures' 0 and 1.
     for (const auto& n : g) {
         std::vector<int> units;

@@ -18,8 +18,7 @@ std::vector<float> blurKernel(int radius) {
 }
 
 void BilateralBlurPass::table(const PipelineConfig& c, PassTable& t) const {
-    t.read("Depth", "uDepth").level(Levels::Base);
-    t.read("Normal", "uNormal").level(Levels::Base);
+    t.read("Radiosity Geometry", "uGeometry");
     t.update("Output Radiance", "uSource").after(c.temporalFirst ? "Temporal blend" : "");
     t.scratch(radiosityScratch(c), "uSource");  // the vertical step reads the horizontal result
 }

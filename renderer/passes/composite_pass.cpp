@@ -14,6 +14,7 @@ void CompositePass::table(const PipelineConfig& c, PassTable& t) const {
     t.read("Occlusion", "uOcclusion").optional(!c.occlusion);  // the occlusion texture darkens indirect light only
     t.read("Input Radiance", "uRadiance").level(Levels::Base).optional(!c.seedComposite);  // seed formula only
     t.read("Output Radiance", "uIndirect").optional(!c.indirect);
+    t.read("Radiosity Geometry", "uGeometry").optional(!c.indirect || c.radiosityDownsample == 1);  // the upsample
     t.read("Direct Radiance", "uDirect");  // evaluated once, by the input radiance pass
     readEnvironmentMap(c, t);                // the backdrop
     t.write({"Final Radiance", {"Final Radiance"}, GL_RGBA16F, GL_TEXTURE_2D, SizeRule::screen(), 1, MemoryGroup::Extra,

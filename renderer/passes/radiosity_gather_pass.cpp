@@ -37,6 +37,10 @@ void RadiosityGatherPass::table(const PipelineConfig& c, PassTable& t) const {
              Visualize::Color,
              "Share of the cosine-weighted hemisphere that the screen's visible surfaces covered in the gather (1 = all "
              "light came from the screen; the probes give the rest)"});
+    t.write({"Radiosity Geometry", {"Radiosity Geometry"}, GL_RGBA32F, GL_TEXTURE_2D, c.radiositySize(), 1,
+             MemoryGroup::Radiosity, Visualize::Color,
+             "Each radiosity-grid pixel's receiver as the gather saw it: world position (xyz) and its Normal texel's two "
+             "bytes (w; -1 = sky), so the blur and the upsample fetch one texel instead of rebuilding it from depth"});
 }
 
 void RadiosityGatherPass::execute(FrameContext& ctx) {
@@ -63,7 +67,8 @@ void RadiosityGatherPass::execute(FrameContext& ctx) {
     if (ctx.config.probes) bindProbeUniforms(ctx);
     ctx.bindSamplers(prog);
     GLuint fbo = ctx.fbos.get({{GL_COLOR_ATTACHMENT0, ctx.texture("Output Radiance")},
-                               {GL_COLOR_ATTACHMENT1, ctx.texture("Gather Coverage")}}, "output radiance");
+                               {GL_COLOR_ATTACHMENT1, ctx.texture("Gather Coverage")},
+                               {GL_COLOR_ATTACHMENT2, ctx.texture("Radiosity Geometry")}}, "output radiance");
     ctx.drawFullscreen(prog.id(), fbo, ctx.radiosityWidth(), ctx.radiosityHeight());
 }
 
