@@ -226,6 +226,7 @@ void fullComposite(PassTable& t) {
     t.read("Emission", "uEmission").optional();
     t.read("Input Radiance", "uRadiance").optional();
     t.read("Output Radiance", "uIndirect").optional();
+    t.read("Radiosity Geometry", "uGeometry").optional();
     t.read("Direct Radiance", "uDirect").optional();
     t.write({"Fake Output", {"Fake Output"}, GL_RGBA16F, GL_TEXTURE_2D, SizeRule::screen(), 1, MemoryGroup::Extra, Visualize::Radiance, ""});
 }

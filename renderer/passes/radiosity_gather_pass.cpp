@@ -37,8 +37,9 @@ void RadiosityGatherPass::table(const PipelineConfig& c, PassTable& t) const {
              Visualize::Color,
              "Share of the cosine-weighted hemisphere that the screen's visible surfaces covered in the gather (1 = all "
              "light came from the screen; the probes give the rest)"});
+    // Extra: a cache of what Depth and Normal hold, not part of the paper's radiosity layout.
     t.write({"Radiosity Geometry", {"Radiosity Geometry"}, GL_RGBA32F, GL_TEXTURE_2D, c.radiositySize(), 1,
-             MemoryGroup::Radiosity, Visualize::Color,
+             MemoryGroup::Extra, Visualize::Color,
              "Each radiosity-grid pixel's receiver as the gather saw it: world position (xyz) and its Normal texel's two "
              "bytes (w; -1 = sky), so the blur and the upsample fetch one texel instead of rebuilding it from depth"});
 }
