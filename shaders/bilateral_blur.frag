@@ -14,7 +14,7 @@ uniform float uKernel[MAX_BLUR_RADIUS + 1];
 uniform float uPlaneEpsilon2;  // squared distance under which a tap is trusted without the plane test
 layout(location = 0) out vec3 oValue;
 
-// World position of the surface a radiosity-grid pixel stands for.
+// Weight of grid pixel tp against the centre (position C, normal nC): 0 for sky, else normal x plane agreement.
 float bilateral(vec3 C, vec3 nC, ivec2 tp) {
     vec4 g = texelFetch(uGeometry, tp, 0);
     if (g.w < 0.0) return 0.0;  // sky
