@@ -309,6 +309,7 @@ void Renderer::prepareResolved(const Settings& s) {
         probes_ = std::make_unique<ProbeVolume>(*scene_, s);
         probeSettings_ = s;
     }
+    if (probes_) probes_->setViewBias(s);
     PipelineConfig c = makeConfig(s);
     const bool rebuild = !configValid_ || !(c == config_);
     // Only G-buffer targets written afresh every frame come or go (the first move adds Motion): the history holds.

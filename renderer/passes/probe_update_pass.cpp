@@ -57,16 +57,17 @@ void ProbeUpdatePass::execute(FrameContext& ctx) {
     }
     const bool settled = v.settled(ctx.settings);
     const bool all = uploadedGeneration_ != ctx.textures.generation() || uploadedVolume_ != &v;
-    if (settled && !all) return;  // converged under these lights: nothing changes
-    // New textures (a resize, a pipeline change) only need the settled state uploaded again: another update would
-    // make the probes, and so the image, depend on how many times the textures were reallocated.
-    if (!settled) v.update(ctx.settings);
-    if (ctx.config.sky) v.uploadSkyTexture(ctx.texture("Probe Sky Irradiance"), all);
-    v.uploadTextures(ctx.texture("Probe Irradiance"), ctx.texture("Probe Depth"), ctx.texture("Probe Data"),
-                     ctx.config.probeDirectionalFill ? ctx.texture("Probe Radiance") : 0, all);
-    uploadedGeneration_ = ctx.textures.generation();
-    uploadedVolume_ = &v;
-    v.uploadUniforms(ctx.probeUniforms);
+    if (!settled || all) {  // settled and uploaded: converged under these lights, the textures hold
+        // New textures (a resize, a pipeline change) only need the settled state uploaded again: another update
+        // would make the probes, and so the image, depend on how many times the textures were reallocated.
+        if (!settled) v.update(ctx.settings);
+        if (ctx.config.sky) v.uploadSkyTexture(ctx.texture("Probe Sky Irradiance"), all);
+        v.uploadTextures(ctx.texture("Probe Irradiance"), ctx.texture("Probe Depth"), ctx.texture("Probe Data"),
+                         ctx.config.probeDirectionalFill ? ctx.texture("Probe Radiance") : 0, all);
+        uploadedGeneration_ = ctx.textures.generation();
+        uploadedVolume_ = &v;
+    }
+    v.uploadUniforms(ctx.probeUniforms);  // 80 bytes, every frame: the view bias may change on a settled volume
 }
 
 void readProbeVolume(PassTable& t) {

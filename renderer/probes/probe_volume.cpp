@@ -158,13 +158,14 @@ ProbeGrid fitProbeGrid(const Aabb& bounds, const Settings& s) {
     return g;
 }
 
+void ProbeVolume::setViewBias(const Settings& s) { viewBias_ = s.probeViewBias * grid_.minSpacing(); }
+
 bool ProbeVolume::layoutChanged(const Settings& a, const Settings& b) {
     return a.probeSpacing != b.probeSpacing || a.probeRelativeSpacing != b.probeRelativeSpacing ||
            a.probeMaxCount != b.probeMaxCount || a.probeIrradianceTexels != b.probeIrradianceTexels ||
            a.probeDepthTexels != b.probeDepthTexels || a.probeRadianceTexels != b.probeRadianceTexels ||
            a.probeInsideFraction != b.probeInsideFraction ||
-           a.probeMaxRelocation != b.probeMaxRelocation || a.probeNormalBias != b.probeNormalBias ||
-           a.probeViewBias != b.probeViewBias;
+           a.probeMaxRelocation != b.probeMaxRelocation || a.probeNormalBias != b.probeNormalBias;
 }
 
 ProbeVolume::ProbeVolume(const Scene& scene, const Settings& s, uint64_t seed, int threads)
@@ -174,7 +175,7 @@ ProbeVolume::ProbeVolume(const Scene& scene, const Settings& s, uint64_t seed, i
     depthN_ = std::min(std::max(s.probeDepthTexels, 2), 64);
     radN_ = std::min(std::max(s.probeRadianceTexels, 2), 64);
     normalBias_ = s.probeNormalBias * grid_.minSpacing();
-    viewBias_ = s.probeViewBias * grid_.minSpacing();
+    setViewBias(s);
     maxDistance_ = 1.5f * glm::length(grid_.spacing);
     const int n = grid_.count();
     tilesPerRow_ = std::max(1, int(std::ceil(std::sqrt(double(n)))));

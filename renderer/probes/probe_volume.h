@@ -138,6 +138,9 @@ public:
     // own bounce at their rays' hits uses none: with it, the sun patch's multi-bounce ratio rose 1.055 -> 1.126).
     glm::vec3 irradiance(const glm::vec3& x, const glm::vec3& n, float* weightSum = nullptr,
                          const glm::vec3& view = glm::vec3(0.0f)) const;
+    // probes.view_bias is a lookup's parameter, not the probes' state (their own bounce uses none): a new value
+    // applies at once, without a new volume (layoutChanged() ignores it).
+    void setViewBias(const Settings& s);
 
     // ---- The sky (renderer/scene/environment_map.h) ----------------------------------------------------------
     // With an environment that lights (environmentOn), each probe also keeps the irradiance the environment brings
