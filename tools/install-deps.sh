@@ -1,12 +1,13 @@
 #!/usr/bin/env bash
 # Installs the Debian 12 packages deepgi needs; skips the ones already present (idempotent).
 set -euo pipefail
+# openimageio-tools: Debian's OIIO CMake config checks that /usr/bin/iconvert etc. exist, and only that package has them.
 # fonts-dejavu-core: the font the bench's plots and grids are labelled with (OIIO render_text, bench/draw.cpp);
 # draco gltfpack: draco_transcoder and gltfpack, other producers of Draco and meshopt files for the tests; xvfb xauth: the viewer tests; clang libclang-rt-14-dev: tools/fuzz.sh; libegl-dev: `--context egl`.
 PKGS=(build-essential cmake pkg-config
   libglfw3-dev libglm-dev libimgui-dev libstb-dev libtinygltf-dev libtinyobjloader-dev libdraco-dev libmeshoptimizer-dev draco gltfpack
   nlohmann-json3-dev libcli11-dev
-  libopenimageio-dev libosmesa6-dev libegl-dev python3-glad libembree-dev libgtest-dev fonts-dejavu-core
+  libopenimageio-dev openimageio-tools libosmesa6-dev libegl-dev python3-glad libembree-dev libgtest-dev fonts-dejavu-core
   xvfb xauth clang libclang-rt-14-dev)
 missing=()
 for p in "${PKGS[@]}"; do
