@@ -129,7 +129,10 @@ void Renderer::sceneChanged(unsigned changes) {
 int Renderer::objectAt(int x, int y) const {
     if (!textures_.has("Object ID") || frameIndex_ == 0) return -1;
     const auto& e = textures_.entry("Object ID");
-    if (x < 0 || y < 0 || x >= e.width || y >= e.height) return -1;
+    if (x < 0 || y < 0 || x >= width_ || y >= height_) return -1;
+    x += guard_;  // image pixel -> frame texel
+    y += guard_;
+    if (x >= e.width || y >= e.height) return -1;
     GLuint id = 0;
     glPixelStorei(GL_PACK_ALIGNMENT, 1);
     glGetTextureSubImage(e.texture.id(), 0, x, e.height - 1 - y, 0, 1, 1, 1, GL_RED_INTEGER, GL_UNSIGNED_INT, sizeof(id), &id);
@@ -141,6 +144,22 @@ void Renderer::resize(int w, int h) {
     if (w != width_ || h != height_) historyValid_ = false;
     width_ = w;
     height_ = h;
+}
+
+Camera Renderer::guardedCamera(const Camera& c, int guard) const {
+    if (guard <= 0 || height_ <= 0) return c;
+    Camera g = c;
+    const double grow = double(height_ + 2 * guard) / double(height_);  // the same size of pixel, more of them
+    if (c.perspective) g.yfov = float(2.0 * std::atan(std::tan(0.5 * double(c.yfov)) * grow));
+    else g.orthoHalfHeight = float(double(c.orthoHalfHeight) * grow);
+    return g;
+}
+
+int Renderer::guardTexels(const TextureRegistry::Entry& e, int level) const {
+    if (guard_ <= 0 || e.decl.size.base != SizeRule::Base::Screen) return 0;
+    int iw = 0, ih = 0;  // the image's own size at this texture's rule
+    e.decl.size.resolve(width_, height_, 0, iw, ih);
+    return std::max(0, ((e.height >> level) - std::max(1, ih >> level)) / 2);
 }
 
 int Renderer::lastGeometryPasses() const {
@@ -267,26 +286,29 @@ void Renderer::setupLights(const Settings& s) {
 }
 
 void Renderer::uploadFrameUniforms(const Settings& s) {
-    const float aspect = float(width_) / float(std::max(height_, 1));
+    const int fw = frameWidth(), fh = frameHeight();
+    const float aspect = float(fw) / float(std::max(fh, 1));
     FrameUniformsStd140 u{};
-    const Camera& prev = historyValid_ ? prevCamera_ : camera_;
-    u.view = camera_.view();
-    u.proj = camera_.projection(aspect);
+    // The guard band widens the view by whole pixels: the frame's centre is the image, pixel for pixel.
+    const Camera cam = guardedCamera(camera_, guard_);
+    const Camera prev = guardedCamera(historyValid_ ? prevCamera_ : camera_, guard_);
+    u.view = cam.view();
+    u.proj = cam.projection(aspect);
     u.viewProj = u.proj * u.view;
     u.invViewProj = glm::inverse(u.viewProj);
     u.prevViewProj = prev.projection(aspect) * prev.view();
     u.prevInvViewProj = glm::inverse(u.prevViewProj);
-    u.cameraPos = glm::vec4(camera_.position(), camera_.perspective ? 1.0f : 0.0f);
-    u.cameraForward = glm::vec4(camera_.forward(), 0.0f);
+    u.cameraPos = glm::vec4(cam.position(), cam.perspective ? 1.0f : 0.0f);
+    u.cameraForward = glm::vec4(cam.forward(), 0.0f);
     u.prevCameraPos = glm::vec4(prev.position(), prev.perspective ? 1.0f : 0.0f);
     u.prevCameraForward = glm::vec4(prev.forward(), 0.0f);
-    u.viewport = glm::vec4(width_, height_, 1.0f / width_, 1.0f / height_);
-    u.clip = glm::vec4(camera_.znear, camera_.zfar, projScale(camera_, height_), float(frameIndex_));
-    u.prevClip = glm::vec4(prev.znear, prev.zfar, projScale(prev, height_), 0.0f);
+    u.viewport = glm::vec4(fw, fh, 1.0f / fw, 1.0f / fh);
+    u.clip = glm::vec4(cam.znear, cam.zfar, projScale(cam, fh), float(frameIndex_));
+    u.prevClip = glm::vec4(prev.znear, prev.zfar, projScale(prev, fh), 0.0f);
     u.background = glm::vec4(glm::vec3(s.background), 1.0f);
     {
         int rw = 0, rh = 0;
-        config_.radiositySize().resolve(width_, height_, 0, rw, rh);
+        config_.radiositySize().resolve(fw, fh, 0, rw, rh);
         u.radiosityGrid = glm::vec4(float(config_.radiosityDownsample), float(rw), float(rh), 0.0f);
     }
     glNamedBufferSubData(frameUbo_.id(), 0, sizeof(u), &u);
@@ -299,6 +321,10 @@ void Renderer::prepare(const Settings& user) { prepareResolved(resolveLengths(us
 
 void Renderer::prepareResolved(const Settings& s) {
     if (width_ <= 0 || height_ <= 0) return;
+    // Even, so that the half-resolution radiosity grid's centre is the image's, texel for texel.
+    const int guard = 2 * int(std::lround(double(s.guardBand) * double(height_) * 0.5));
+    if (guard != guard_) historyValid_ = false;  // every screen-sized buffer changes size and meaning
+    guard_ = guard;
     // The probe volume exists only where it can help: indirect light on, or an environment that lights (its sky
     // visibility lives in the probes), and a scene with surfaces.
     const bool wantProbes = ((s.probesEnabled && s.indirect) || environmentOn(*scene_, s)) && scene_->bounds.valid() &&
@@ -323,7 +349,7 @@ void Renderer::prepareResolved(const Settings& s) {
     configValid_ = true;
     if (rebuild || stages_.size() != passes_.size()) buildPipeline();
     const uint64_t before = textures_.generation();
-    textures_.reconcile(allocations_, width_, height_, std::max(1, s.shadowMapSize));
+    textures_.reconcile(allocations_, frameWidth(), frameHeight(), std::max(1, s.shadowMapSize));
     if (textures_.generation() != before && !keepHistory) historyValid_ = false;
     if (fboGeneration_ != textures_.generation()) {
         fbos_.clear();
@@ -505,7 +531,7 @@ FrameContext Renderer::makeContext(const Settings& s) {
     uploadFrameUniforms(s);
     sceneGpu_->beginFrame(historyValid_ && s.objectMotion);  // without: last frame's matrices = this frame's
     FrameContext ctx{s, config_, textures_, *shaders_, fbos_, *sceneGpu_, fullscreenVao_.id(), lightSsbo_.id(),
-                     lightCount_, casters_, shadowKey_, width_, height_, historyValid_,
+                     lightCount_, casters_, shadowKey_, frameWidth(), frameHeight(), historyValid_,
                      s.varyTaps ? float(frameIndex_ % 1024) * 0.618034f : 0.0f, probes_.get(), probeUbo_.id()};
     ctx.environment = scene_->environment.get();
     return ctx;
@@ -530,10 +556,11 @@ FloatImage Renderer::readLayer(const std::string& layerName, int level, bool dec
     int layer = 0;
     if (!textures_.findLayer(layerName, &e, &layer)) throw std::runtime_error("no buffer named '" + layerName + "'");
     const TextureDecl& d = e->decl;
-    level = std::clamp(level, 0, d.levels - 1);
-    const int w = std::max(1, e->width >> level), h = std::max(1, e->height >> level);
-    const bool depth = gl::isDepthFormat(d.format);
     const bool cube = d.target == GL_TEXTURE_CUBE_MAP_ARRAY;
+    level = std::clamp(level, 0, d.levels - 1);
+    const int guard = cube ? 0 : guardTexels(*e, level);  // the guard band is not part of the image
+    const int w = std::max(1, (e->width >> level) - 2 * guard), h = std::max(1, (e->height >> level) - 2 * guard);
+    const bool depth = gl::isDepthFormat(d.format);
     const int faces = cube ? 6 : 1;
     const bool two = d.format == GL_RG8_SNORM || d.format == GL_RG32F || d.format == GL_RG16F;
     const bool four = d.format == GL_RGBA8 || d.format == GL_RGBA16F || d.format == GL_RGBA32F;
@@ -545,10 +572,10 @@ FloatImage Renderer::readLayer(const std::string& layerName, int level, bool dec
     const int zoff = d.target == GL_TEXTURE_2D ? 0 : (cube ? layer * 6 : layer);
     if (integer) {
         std::vector<uint32_t> ids(raw.size());
-        glGetTextureSubImage(e->texture.id(), level, 0, 0, zoff, w, h, faces, fmt, GL_UNSIGNED_INT, GLsizei(ids.size() * sizeof(uint32_t)), ids.data());
+        glGetTextureSubImage(e->texture.id(), level, guard, guard, zoff, w, h, faces, fmt, GL_UNSIGNED_INT, GLsizei(ids.size() * sizeof(uint32_t)), ids.data());
         for (size_t i = 0; i < ids.size(); ++i) raw[i] = float(ids[i]);
     } else {
-        glGetTextureSubImage(e->texture.id(), level, 0, 0, zoff, w, h, faces, fmt, GL_FLOAT, GLsizei(raw.size() * sizeof(float)), raw.data());
+        glGetTextureSubImage(e->texture.id(), level, guard, guard, zoff, w, h, faces, fmt, GL_FLOAT, GLsizei(raw.size() * sizeof(float)), raw.data());
     }
 
     FloatImage img;
@@ -581,12 +608,13 @@ FloatImage Renderer::readLayer(const std::string& layerName, int level, bool dec
 
 std::vector<unsigned char> Renderer::readDisplay() const {
     const auto& e = textures_.entry("Final Display");
-    std::vector<unsigned char> px(size_t(e.width) * e.height * 4);
+    const int g = guardTexels(e), w = e.width - 2 * g, h = e.height - 2 * g;
+    std::vector<unsigned char> px(size_t(w) * h * 4);
     glPixelStorei(GL_PACK_ALIGNMENT, 1);
-    glGetTextureImage(e.texture.id(), 0, GL_RGBA, GL_UNSIGNED_BYTE, GLsizei(px.size()), px.data());
+    glGetTextureSubImage(e.texture.id(), 0, g, g, 0, w, h, 1, GL_RGBA, GL_UNSIGNED_BYTE, GLsizei(px.size()), px.data());
     std::vector<unsigned char> flipped(px.size());
-    const size_t row = size_t(e.width) * 4;
-    for (int y = 0; y < e.height; ++y) std::memcpy(&flipped[y * row], &px[(e.height - 1 - y) * row], row);
+    const size_t row = size_t(w) * 4;
+    for (int y = 0; y < h; ++y) std::memcpy(&flipped[y * row], &px[(h - 1 - y) * row], row);
     return flipped;
 }
 

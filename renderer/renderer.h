@@ -90,6 +90,16 @@ public:
     void resize(int width, int height);
     int width() const { return width_; }
     int height() const { return height_; }
+    // The guard band (gbuffer.guard_band) of the last prepared frame, in pixels on each side: screen-sized textures
+    // are (width + 2 guard) x (height + 2 guard) and the image is their centre. readLayer/readDisplay/objectAt crop
+    // it; a client drawing a texture itself offsets by guardTexels().
+    int guardPixels() const { return guard_; }
+    int frameWidth() const { return width_ + 2 * guard_; }
+    int frameHeight() const { return height_ + 2 * guard_; }
+    // Texels of the guard band on each side of a registered texture's level (0 for textures not screen-sized).
+    int guardTexels(const TextureRegistry::Entry& e, int level = 0) const;
+    // The camera the frame is rendered with: camera() widened by the guard band (camera() itself when there is none).
+    Camera frameCamera() const { return guardedCamera(camera_, guard_); }
     // The camera of the next frame. Call resetHistory() as well on a cut (a jump that is not motion).
     void setCamera(const Camera& camera) { camera_ = camera; }
     const Camera& camera() const { return camera_; }
@@ -130,6 +140,7 @@ public:
     std::vector<unsigned char> readDisplay() const;
 
 private:
+    Camera guardedCamera(const Camera& c, int guard) const;
     PipelineConfig makeConfig(const Settings& s) const;
     void prepareResolved(const Settings& s);  // s with lengths already in scene units
     void setupLights(const Settings& s);
@@ -170,6 +181,7 @@ private:
     std::vector<ShadowCaster> casters_;
     uint64_t shadowKey_ = 0;
     int width_ = 0, height_ = 0;
+    int guard_ = 0;  // guard band in pixels on each side (a change restarts the history, as a resize does)
     Camera camera_, prevCamera_;
     bool historyValid_ = false;
     bool sceneMoved_ = false;  // sceneChanged(Transforms) since setScene: objects move, Motion is written
