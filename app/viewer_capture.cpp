@@ -151,7 +151,7 @@ void Viewer::capture() {
     try {
         fs::create_directories(dir);
         const auto& e = renderer_->textures().entry("Final Display");
-        writePng8((dir / "final.png").string(), e.width, e.height, 4, renderer_->readDisplay());
+        writePng8((dir / "final.png").string(), renderer_->width(), renderer_->height(), 4, renderer_->readDisplay());
         int n = 0;
         if (captureBuffers_)
             for (const auto& name : renderer_->textures().layerNames()) {

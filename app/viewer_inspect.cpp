@@ -112,12 +112,14 @@ ui::EmptyMask Viewer::emptyMask(const std::string& name, int level) {
     if (!applies) return maskLast_;
     const TextureRegistry::Entry& d = renderer_->textures().entry("Depth");
     const int w = d.width, h = d.height;
+    // The mask is of the image; the overlay spans the texture, guard band included (left clear: not counted).
+    const int g = renderer_->guardTexels(d), mw = w - 2 * g, mh = h - 2 * g;
     // Diagonal grey stripes, 6 texels apart: opaque, so an empty texel never reads as data.
     std::vector<unsigned char> px(size_t(w) * h * 4, 0);
     size_t empty = 0;
     for (int y = 0; y < h; ++y)
         for (int x = 0; x < w; ++x) {
-            if (mask[size_t(y) * w + x]) continue;
+            if (x < g || y < g || x >= g + mw || y >= g + mh || mask[size_t(y - g) * mw + (x - g)]) continue;
             ++empty;
             const bool stripe = ((x + y) / 3) % 2 == 0;
             unsigned char* p = &px[(size_t(h - 1 - y) * w + x) * 4];  // GL rows bottom-up
@@ -136,7 +138,7 @@ ui::EmptyMask Viewer::emptyMask(const std::string& name, int level) {
     glTextureParameterfv(maskTex_.id(), GL_TEXTURE_BORDER_COLOR, transparent);
     maskLast_.texture = maskTex_.id();
     maskLast_.empty = empty;
-    maskLast_.texels = size_t(w) * h;
+    maskLast_.texels = size_t(mw) * mh;
     return maskLast_;
 }
 

@@ -14,22 +14,33 @@ namespace deepgi {
 void Viewer::drawViewport() {
     ImGuiIO& io = ImGui::GetIO();
     // The viewport: the chosen buffer (or the path tracer, alone or split against the frame), fitted, aspect kept.
-    BufferSource src = source(view_.buffer, 0), split;
-    if (!src.valid()) src = source("Final Display", 0);
+    std::string srcName = view_.buffer;
+    BufferSource src = source(srcName, 0), split;
+    if (!src.valid()) src = source(srcName = "Final Display", 0);
     const ui::PathTraceMode ptMode = pathTraceMode();
-    if (ptMode == ui::PathTraceMode::Full) src = source(ui::kPathTraceName, 0);
+    if (ptMode == ui::PathTraceMode::Full) src = source(srcName = ui::kPathTraceName, 0);
     if (ptMode == ui::PathTraceMode::Split) {
-        src = source("Final Radiance", 0);  // the same display mapping as the path tracer's radiance
+        src = source(srcName = "Final Radiance", 0);  // the same display mapping as the path tracer's radiance
         split = source(ui::kPathTraceName, 0);
     }
     const float vw = vpX1_ - vpX0_, vh = vpY1_ - vpY0_;
     const int ow = std::max(1, int(vw * io.DisplayFramebufferScale.x)), oh = std::max(1, int(vh * io.DisplayFramebufferScale.y));
     if (src.valid()) {
         BufferViewParams p = view_.params;
-        const float sw = float(src.levelWidth()), sh = float(src.levelHeight());
+        // The viewport shows the image: a screen-sized buffer's guard band (gbuffer.guard_band) is cut off here (the
+        // inspector shows it).
+        int guard = 0;
+        {
+            const TextureRegistry::Entry* e = nullptr;
+            int layer = 0;
+            if (renderer_->textures().findLayer(srcName, &e, &layer) && e->texture.id() == src.texture)
+                guard = renderer_->guardTexels(*e, src.level);
+        }
+        p.cropA = glm::vec2(float(guard));
+        const float sw = float(src.levelWidth() - 2 * guard), sh = float(src.levelHeight() - 2 * guard);
         const float tpp = std::max(sw / float(ow), sh / float(oh));  // texels per output pixel (fit)
         p.texelsPerPixel = tpp;
-        p.origin = glm::vec2(sw, sh) * 0.5f - glm::vec2(float(ow), float(oh)) * 0.5f * tpp;
+        p.origin = glm::vec2(sw, sh) * 0.5f - glm::vec2(float(ow), float(oh)) * 0.5f * tpp + p.cropA;
         p.grid = false;
         const Camera& c = renderer_->camera();
         p.znear = c.znear;
@@ -43,11 +54,11 @@ void Viewer::drawViewport() {
         }
         // A frame smaller than the viewport (dynamic resolution, the resolution slider): the view is drawn at the
         // frame's size and magnified bilinearly into the viewport, not in blocks of whole texels.
-        const bool magnify = ptMode == ui::PathTraceMode::Off && tpp < 1.0f && src.levelWidth() == renderer_->width() &&
-                             src.levelHeight() == renderer_->height();
+        const bool magnify = ptMode == ui::PathTraceMode::Off && tpp < 1.0f && int(sw) == renderer_->width() &&
+                             int(sh) == renderer_->height();
         if (magnify) {
             p.texelsPerPixel = 1.0f;
-            p.origin = glm::vec2(0.0f);
+            p.origin = p.cropA;
         }
         // The same inputs as the last drawing (a UI frame: nothing rendered since): its texture again, not redrawn.
         ViewportKey key;

@@ -29,6 +29,7 @@ uniform vec4 uBackground;
 uniform vec2 uClip;       // near, far
 uniform int uPersp;
 uniform float uSplitX;    // output pixels, B at x >= this
+uniform vec2 uCropA;      // A's guard band in texels on each side: B covers A's centre
 layout(location = 0) out vec4 oColor;
 
 vec3 decodeOct(vec2 e) {
@@ -68,7 +69,7 @@ void main() {
     if (uHasB != 0 && abs(frag.x - uSplitX) < 0.75) { oColor = vec4(1.0, 1.0, 1.0, 1.0); return; }
 
     vec2 t = uOrigin + frag * uTexelsPerPixel;  // texel coordinates in A's level
-    if (src == 1) t *= vec2(uSize[1] * ivec2(uFaces[1], 1)) / vec2(uSize[0] * ivec2(uFaces[0], 1));
+    if (src == 1) t = (t - uCropA) * vec2(uSize[1] * ivec2(uFaces[1], 1)) / (vec2(uSize[0] * ivec2(uFaces[0], 1)) - 2.0 * uCropA);
     ivec2 full = uSize[src] * ivec2(uFaces[src], 1);
     if (t.x < 0.0 || t.y < 0.0 || t.x >= float(full.x) || t.y >= float(full.y)) { oColor = uBackground; return; }
 

@@ -64,6 +64,7 @@ struct BufferViewPass::Program : gl::Program {
     gl::Uniform<glm::vec2> clip{*this, "uClip"};
     gl::Uniform<bool> persp{*this, "uPersp"};
     gl::Uniform<float> splitX{*this, "uSplitX"};
+    gl::Uniform<glm::vec2> cropA{*this, "uCropA"};
 };
 
 int BufferSource::levelWidth() const { return std::max(1, width >> level) * (target == GL_TEXTURE_CUBE_MAP_ARRAY ? 6 : 1); }
@@ -169,6 +170,7 @@ void BufferViewPass::draw(gl::ShaderLibrary& shaders, const BufferSource& a, con
     prog.clip.set(glm::vec2(p.znear, p.zfar));
     prog.persp.set(p.perspective);
     prog.splitX.set(p.splitX * float(outW));
+    prog.cropA.set(p.cropA);
 
     glBindFramebuffer(GL_FRAMEBUFFER, fbo_.id());
     glViewport(0, 0, outW, outH);

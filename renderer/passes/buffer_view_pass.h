@@ -59,6 +59,8 @@ struct BufferViewParams {
     bool perspective = true;
     // A/B: output pixels with x >= splitX (0..1 of the output width) show source B.
     float splitX = 0.5f;
+    // Texels of source A's guard band on each side (Renderer::guardTexels): B spans A's centre, not all of it.
+    glm::vec2 cropA{0.0f};
 };
 
 // Raw (or decoded) values of a small block of texels, for the readout under the cursor.
