@@ -154,26 +154,3 @@ TEST_F(GLTest, GuardBandLightsTheWallFromTheFloorBelowTheView) {
     EXPECT_GT(ratio, 0.5);
     EXPECT_LT(ratio, 1.2);
 }
-TEST_F(GLTest, ScratchGuard) {
-    const auto scene = stripBelowTheView();
-    const int W = 128, H = 72;
-    Settings s;
-    s.probesEnabled = false;
-    s.damping = 1.0f;
-    s.guardBand = 0.3f;
-    s.blur = false;
-    s.temporal = false;
-    s.radiosityResolution = RadiosityResolution::Full;
-    Renderer r;
-    r.setScene(scene);
-    r.resize(W, H);
-    r.setCamera(selectCamera(*scene, "wall"));
-    r.render(s);
-    r.render(s);
-    FloatImage rad = r.readLayer("Output Radiance");
-    for (int y = 0; y < rad.height; y += 6) {
-        double a = 0, o = 0, e = 0;
-        for (int x = 0; x < rad.width; ++x) { a += rad.at(x, y, 0); o += rad.at(x, y, 1); e += rad.at(x, y, 2); }
-        std::printf("row %d: acc %.2f occ %.2f E %.3f\n", y, a / rad.width, o / rad.width, e / rad.width);
-    }
-}
