@@ -132,12 +132,13 @@ vec2 spiralTap(int i, int n, float turns, float phi, float jitter, float rss, ou
 }
 
 // The full-resolution pixel whose sample mip texel T of level m holds: gather_mips.frag's rotated-grid choice,
-// q = clamp(2p + (p.y & 1, p.x & 1)), followed back to level 0. size = level-0 size.
+// q = clamp(2p + (p.y & 1, p.x & 1)), followed back to level 0. size = level-0 size. In closed form: each step swaps
+// the low bits, so the offsets alternate (T.y & 1, T.x & 1), (T.x & 1, T.y & 1), ... from the coarsest step, i.e. the
+// bits m-1, m-3, ... take one and m-2, m-4, ... the other; the per-level clamp never binds below a one-texel level
+// (2 floor(s/2) - 1 <= s - 1), so one clamp at the end gives the same pixel (checked for every texel of 6 sizes).
 ivec2 sourcePixel(ivec2 T, int m, ivec2 size) {
-    for (int i = 0; i < MAX_MIP_LEVELS; ++i) {
-        if (i >= m) break;
-        int k = m - i;
-        T = clamp(T * 2 + ivec2(T.y & 1, T.x & 1), ivec2(0), max(size >> (k - 1), ivec2(1)) - 1);
-    }
-    return T;
+    int mask = (1 << m) - 1;
+    int first = mask & ((m & 1) != 0 ? 0x55555555 : 0x2AAAAAAA), second = mask & ~first;
+    int a = T.x & 1, b = T.y & 1;
+    return min((T << m) + ivec2(b * first + a * second, a * first + b * second), size - 1);
 }
