@@ -83,21 +83,34 @@ int mipFor(float h) { return clamp(findMSB(max(int(h), 1)) - uLogMaxOffset, uMin
 // a to the tap's pixel b, where the segments X -> Y0 and X -> Y1 (both end on b's pixel ray) have eye depths that
 // interpolate as 1/z across the screen (z itself under an orthographic camera). A segment is blocked where it runs
 // behind layer 1 by less than that surface's thickness (the interval up to layer 2, at most uThickness).
-void marchOccluded(vec2 a, vec2 b, float hY, float zX, float zY0, float zY1, bool test0, bool test1, float jitter,
-                   ivec2 size, bool twoLayers, out bool occ0, out bool occ1) {
+// Each step's depth is the mip texel's own sample, at the full-resolution pixel it came from (sourcePixel): the
+// segment's depth is taken where that pixel projects onto it, and a sample on the receiver's or the tap's tangent
+// plane (within 3 % of |Y - X|) is that surface itself, which cannot block (a grazing floor at a wall's foot).
+void marchOccluded(vec2 a, vec2 b, float hY, vec3 X, vec3 nX, vec3 Y0, vec3 n0, vec3 Y1, vec3 n1, float zX, float zY0,
+                   float zY1, bool test0, bool test1, float jitter, ivec2 size, bool twoLayers, out bool occ0,
+                   out bool occ1) {
     occ0 = false;
     occ1 = false;
     bool persp = uCameraPos.w > 0.5;
     float iX = persp ? 1.0 / zX : zX, i0 = persp ? 1.0 / zY0 : zY0, i1 = persp ? 1.0 / zY1 : zY1;
+    vec2 ab = b - a;
+    float abInv = 1.0 / max(dot(ab, ab), 1e-12);
+    float e0 = 0.03 * length(Y0 - X), e1 = 0.03 * length(Y1 - X);
     for (int k = 0; k < MAX_VISIBILITY_STEPS; ++k) {
         if (k >= uVisibilitySteps) break;
-        float t = (float(k) + jitter) / float(uVisibilitySteps);
-        ivec2 q = ivec2(mix(a, b, t));
+        float ts = (float(k) + jitter) / float(uVisibilitySteps);
+        ivec2 q = ivec2(mix(a, b, ts));
         if (any(lessThan(q, ivec2(0))) || any(greaterThanEqual(q, size))) continue;
-        int m = mipFor(t * hY);
+        int m = mipFor(ts * hY);
         ivec2 T = q >> m;
         float d1 = texelFetch(uDepth, ivec3(T, 0), m).r;
         if (isSky(d1)) continue;
+        vec2 src = vec2(sourcePixel(T, m, size)) + 0.5;
+        float t = clamp(dot(src - a, ab) * abInv, 0.0, 1.0);
+        vec3 S = worldFromDepth(src, d1, uInvViewProj);
+        bool onX = abs(dot(S - X, nX)) < e0;
+        bool block0 = test0 && !onX && !(abs(dot(S - Y0, n0)) < e0);
+        bool block1 = test1 && !(abs(dot(S - X, nX)) < e1) && !(abs(dot(S - Y1, n1)) < e1);
         float z1 = eyeDepthCurrent(d1);
         float thick = uThickness;
 #ifndef DEEPGI_SINGLE_LAYER
@@ -109,8 +122,8 @@ void marchOccluded(vec2 a, vec2 b, float hY, float zX, float zY0, float zY1, boo
         float lo = z1 + 0.05 * uThickness + 2e-3 * z1, hi = z1 + thick;
         float w0 = mix(iX, i0, t), w1 = mix(iX, i1, t);
         float zP0 = persp ? 1.0 / w0 : w0, zP1 = persp ? 1.0 / w1 : w1;
-        occ0 = occ0 || (test0 && zP0 > lo && zP0 < hi);
-        occ1 = occ1 || (test1 && zP1 > lo && zP1 < hi);
+        occ0 = occ0 || (block0 && zP0 > lo && zP0 < hi);
+        occ1 = occ1 || (block1 && zP1 > lo && zP1 < hi);
         if ((occ0 || !test0) && (occ1 || !test1)) break;
     }
 }
@@ -196,19 +209,19 @@ void main() {
         if (Yp == pix) continue;
         int m = mipFor(h);
         ivec2 T = Yp >> m;
-        // xy at full resolution, z from the coarse level, as G3D does.
-        vec2 P = vec2(Yp) + 0.5;
+        // The tap is the coarse texel's own sample, at the full-resolution pixel its depth came from (G3D takes
+        // xy at full resolution and z from the coarse level, which puts a grazing surface's tap off the surface).
+        vec2 P = vec2(sourcePixel(T, m, size)) + 0.5;
         vec4 h0 = c + P.x * cx + P.y * cy;
         float dA = areaPerH * h;
         vec3 Y0, n0, E0;
         bool v0;
         float c0;
         tapLayer(0, T, m, h0, hz, X, nX, r2, dA, Y0, n0, v0, E0, c0);
-        vec3 Y1 = Y0, E1 = vec3(0.0);
+        vec3 Y1 = Y0, E1 = vec3(0.0), n1 = n0;
         float c1 = 0.0;
 #ifndef DEEPGI_SINGLE_LAYER  // defined when layer 2 is off: no layer-2 code at all
         if (twoLayers && v0) {
-            vec3 n1;
             bool v1;
             tapLayer(1, T, m, h0, hz, X, nX, r2, dA, Y1, n1, v1, E1, c1);
             if (c1 > 0.0) {
@@ -229,8 +242,8 @@ void main() {
 #endif
         if (uVisibilitySteps > 0 && (c0 > 0.0 || c1 > 0.0)) {
             bool occ0, occ1;
-            marchOccluded(vec2(pix) + 0.5, P, h, zX, eyeZ(Y0), eyeZ(Y1), c0 > 0.0, c1 > 0.0, marchJitter, size, twoLayers,
-                          occ0, occ1);
+            marchOccluded(vec2(pix) + 0.5, P, h, X, nX, Y0, n0, Y1, n1, zX, eyeZ(Y0), eyeZ(Y1), c0 > 0.0, c1 > 0.0,
+                          marchJitter, size, twoLayers, occ0, occ1);
             if (occ0) c0 = 0.0;
             if (occ1) c1 = 0.0;
         }

@@ -115,9 +115,8 @@ TEST_F(GLTest, GuardBandImageIsTheCentreOfAWiderFrame) {
 // The band's purpose: light from a surface just outside the view. The floor's lit strip, the only surface that
 // reflects light, is below the bottom edge and inside the band; with the probes off, the screen alone lights the wall
 // only when the band holds the strip. The answer is a one-bounce path trace. Asserted: nothing without the band, and
-// at least half of the truth with it. Issue 9's targets (relative L1 <= 25 %, ratio 0.8-1.2) are not met: 39 % and
-// 0.645 today, all of the shortfall at the wall's foot, where the gather's visibility march wrongly blocks the taps
-// on the floor (0.907 with radiosity.visibility_steps=0); see docs/BENCHMARKS.md, "Session 8".
+// issue 9's ratio of means (0.8-1.2) with it. Its relative L1 <= 25 % is not met (27 %: the wall's foot, where the
+// gather's patches of a grazing floor are coarse; docs/BENCHMARKS.md, "Session 8").
 TEST_F(GLTest, GuardBandLightsTheWallFromTheFloorBelowTheView) {
     const auto scene = stripBelowTheView();
     const int W = 128, H = 72;
@@ -151,6 +150,38 @@ TEST_F(GLTest, GuardBandLightsTheWallFromTheFloorBelowTheView) {
     std::printf("wall lit from below the view, one bounce: no band: ratio %.3f; band 0.3: relL1 %.1f %%, ratio %.3f\n",
                 bench::ratioOfMeans(without, ref.indirect), 100.0 * l1, ratio);
     EXPECT_LT(bench::ratioOfMeans(without, ref.indirect), 0.05);  // the screen alone has nothing of the strip
-    EXPECT_GT(ratio, 0.5);
+    EXPECT_GT(ratio, 0.8);
     EXPECT_LT(ratio, 1.2);
+}
+
+// Nothing stands between any two points of a floor and a wall that meet in a concave corner, so the visibility march
+// must not remove light there: the same frame with radiosity.visibility_steps=0 is the answer (within 3 %). It failed
+// (0.53-0.55; 0.33-0.41 at the foot) while a coarse tap took its x, y at full resolution and its depth from the mip:
+// that put the tap and the march's samples off a grazing floor, and the floor blocked its own light.
+TEST_F(GLTest, VisibilityMarchBlocksNothingInAnOpenCorner) {
+    const auto scene = stripBelowTheView();
+    const int W = 128, H = 72;
+    for (const char* resolution : {"half", "full"}) {
+        auto render = [&](int steps) {
+            Settings s;
+            applySetting(s, "radiosity.resolution", resolution);
+            s.probesEnabled = false;
+            s.damping = 1.0f;
+            s.guardBand = 0.3f;
+            s.visibilitySteps = steps;
+            Renderer r;
+            r.setScene(scene);
+            r.resize(W, H);
+            r.setCamera(selectCamera(*scene, "wall"));
+            for (int f = 0; f < 20; ++f) r.render(s);
+            return r.readFinalRadiance();
+        };
+        const FloatImage marched = render(8), open = render(0);
+        const double all = rowsMean(marched, 0, H) / rowsMean(open, 0, H);
+        const double foot = rowsMean(marched, H - H / 6, H) / rowsMean(open, H - H / 6, H);  // the wall's foot rows
+        std::printf("open corner, %s radiosity: marched / no march = %.3f (the foot's sixth of the rows %.3f)\n",
+                    resolution, all, foot);
+        EXPECT_GT(all, 0.97) << resolution;
+        EXPECT_GT(foot, 0.97) << resolution;
+    }
 }
