@@ -147,7 +147,8 @@ TEST_F(GLTest, GuardBandLightsTheWallFromTheFloorBelowTheView) {
     const FloatImage without = render(0.0f);
     test::dumpIfRequested("guard_band_wall_without", without);
     test::dumpIfRequested("guard_band_wall_reference", ref.indirect);
-    std::printf("wall lit from below the view, one bounce: no band: ratio %.3f\n", bench::ratioOfMeans(without, ref.indirect));
+    std::printf("wall lit from below the view, one bounce: no band: ratio %.3f\n",
+                bench::ratioOfMeans(without, ref.indirect));
     EXPECT_LT(bench::ratioOfMeans(without, ref.indirect), 0.05);  // the screen alone has nothing of the strip
     for (float band : {0.3f, 0.45f}) {
         const FloatImage with = render(band);
