@@ -542,13 +542,19 @@ void Renderer::executePass(const std::string& passName, const Settings& user) {
     const Settings s = resolveLengths(user, sceneSize());
     prepareResolved(s);
     FrameContext ctx = makeContext(s);
-    for (size_t i = 0; i < passes_.size(); ++i)
+    for (size_t i : order_)
         if (passName == passes_[i]->name()) {
             runPass(i, ctx);
             glBindFramebuffer(GL_FRAMEBUFFER, 0);
             return;
         }
-    throw std::runtime_error("no pass named '" + passName + "'");
+    std::string running;  // a pass that exists but is off (ao.enabled=false) has no textures to run on
+    for (size_t i : order_) running += (running.empty() ? std::string() : std::string(", ")) + passes_[i]->name();
+    for (const auto& p : passes_)
+        if (passName == p->name())
+            throw std::runtime_error("pass '" + passName + "' does not run with these settings (passes that run: " +
+                                     running + ")");
+    throw std::runtime_error("no pass named '" + passName + "' (passes that run: " + running + ")");
 }
 
 FloatImage Renderer::readLayer(const std::string& layerName, int level, bool decode) const {

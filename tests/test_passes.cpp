@@ -247,6 +247,25 @@ TEST_F(GLTest, GatherUnderUniformlyLitCeilingMatchesAnalyticIrradiance) {
     }
 }
 
+// executePass runs only a pass of this frame: one that is off (AO by default) is refused with a message that says so,
+// not with a texture error from inside the pass; a name that is no pass is refused too.
+TEST_F(GLTest, ExecutePassRefusesAPassThatIsOff) {
+    auto scene = cornellScene();
+    auto renderer = rendererFor(scene, 32, 24, "front");
+    Settings s;
+    renderer->render(s);
+    try {
+        renderer->executePass("Ambient occlusion", s);
+        FAIL() << "an AO pass ran with ao.enabled=false";
+    } catch (const std::runtime_error& e) {
+        EXPECT_NE(std::string(e.what()).find("does not run with these settings"), std::string::npos) << e.what();
+        EXPECT_NE(std::string(e.what()).find("Radiosity gather"), std::string::npos) << e.what();
+    }
+    EXPECT_THROW(renderer->executePass("No such pass", s), std::runtime_error);
+    s.aoEnabled = true;
+    EXPECT_NO_THROW(renderer->executePass("Ambient occlusion", s));
+}
+
 // The bilateral blur preserves a constant field.
 TEST_F(GLTest, BilateralBlurPreservesConstant) {
     auto scene = cornellScene();
