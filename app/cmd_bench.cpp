@@ -67,6 +67,7 @@ int runHard(BenchArgs& a, const CLI::App& sub) {
     h.shaderDir = a.o.shaderDir;
     h.context = a.o.context;
     h.base = a.settings.build();
+    h.userAssignments = a.settings.assignments;
     h.quiet = a.o.quiet;
     const bench::HardResult r = bench::runHardSuite(h);
     std::printf("%s\n", r.text.c_str());
@@ -121,6 +122,7 @@ CommandRegistrar registrar("bench", "Speed against error: sweep configurations a
         parseSize(a->size, o.width, o.height);
         parseSize(a->wholeSize, o.wholeFrameWidth, o.wholeFrameHeight, true, "--whole-frame-size");
         o.base = a->settings.build();
+        o.userAssignments = a->settings.assignments;
         if (a->scenes.empty()) {
             o.views = {{std::string(DEEPGI_ASSET_DIR) + "/atrium/atrium.gltf", a->cameras.size() > 0 ? a->cameras[0] : "courtyard", "", {}},
                        {std::string(DEEPGI_ASSET_DIR) + "/cornell_box/cornell_box.gltf", a->cameras.size() > 1 ? a->cameras[1] : "front", "", {}}};

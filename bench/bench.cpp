@@ -73,10 +73,11 @@ const char* kGiPasses[] = {"Reproject radiance", "Input radiance", "Radiosity ga
 
 }  // namespace
 
-Settings configSettings(const Settings& base, const BenchConfig& c) {
+Settings configSettings(const Settings& base, const BenchConfig& c, const std::vector<std::string>& user) {
     Settings s = base;
     if (!c.preset.empty()) applyPreset(s, c.preset);
-    for (const auto& a : c.assignments) applyAssignment(s, a);
+    for (const auto& a : user) applyAssignment(s, a);  // what the user set is what runs, preset or not
+    for (const auto& a : c.assignments) applyAssignment(s, a);  // what makes the configuration (direct_only)
     return s;
 }
 
@@ -203,7 +204,7 @@ BenchResult runBench(const BenchOptions& o) {
 
         std::vector<std::pair<Settings, std::string>> done;  // settings already measured -> config name
         for (const BenchConfig& cfg : configs) {
-            const Settings s = configSettings(viewBase, cfg);
+            const Settings s = configSettings(viewBase, cfg, o.userAssignments);
             BenchRow row;
             row.scene = sceneName;
             row.camera = camName;
@@ -485,7 +486,7 @@ BenchResult runBench(const BenchOptions& o) {
             f << "\n";
         }
         f << "\n## Configurations\n\n| config | settings | what |\n|---|---|---|\n";
-        for (const BenchConfig& c : configs) f << "| " << c.name << " | " << settingsText(configSettings(o.base, c)) << " | " << c.description << " |\n";
+        for (const BenchConfig& c : configs) f << "| " << c.name << " | " << settingsText(configSettings(o.base, c, o.userAssignments)) << " | " << c.description << " |\n";
         f << "\nFigures: `speed_error.png`, `speed_error_indirect.png` (Pareto front ringed and joined), `grid_<view>.png`.\n";
     }
     return result;

@@ -27,8 +27,8 @@ struct BenchConfig {
 };
 // The default sweep (see docs/BENCHMARKS.md).
 std::vector<BenchConfig> defaultConfigs();
-// base <- the configuration's preset <- its assignments.
-Settings configSettings(const Settings& base, const BenchConfig& c);
+// base <- the configuration's preset <- the user's --set <- the configuration's assignments.
+Settings configSettings(const Settings& base, const BenchConfig& c, const std::vector<std::string>& user = {});
 // The renderer's final radiance as linear RGB.
 FloatImage finalRgb(const Renderer& r);
 
@@ -53,6 +53,7 @@ struct BenchOptions {
     std::string environment;  // --environment: an equirectangular map for every view ("" = none)
     std::string shaderDir;  // "" = the source tree's
     Settings base;          // every configuration starts from these
+    std::vector<std::string> userAssignments;  // --set: they win over a configuration's preset
     int wholeFrameWidth = 640, wholeFrameHeight = 360;  // 0 = skip the whole-frame check
     int wholeFrameFrames = 24;
     bool cpuTiming = false;  // per-pass CPU time of this thread with LP_NUM_THREADS=0 (robust on a shared machine)

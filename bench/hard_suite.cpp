@@ -327,7 +327,7 @@ HardResult runHardSuite(const HardOptions& options) {
             r.resize(o.width, o.height);
             std::vector<GridRow> grid;
             for (const BenchConfig& cfg : configs) {
-                const Settings s = configSettings(o.base, cfg);
+                const Settings s = configSettings(o.base, cfg, o.userAssignments);
                 log(o, label + " scale " + scaleName(scale) + ": " + cfg.name);
                 const RunImages run = runView(r, cam, s, o, withPath && scale == 1.0 ? &path : nullptr);
                 HardRow row{view.scene, view.camera, cfg.name, scale, run.frameMs,

@@ -32,6 +32,7 @@ struct HardOptions {
     std::string shaderDir;  // "" = the source tree's shaders/
     std::string context = "osmesa";
     Settings base;          // every configuration starts from these
+    std::vector<std::string> userAssignments;  // --set: they win over a configuration's preset
     bool quiet = false;
 };
 

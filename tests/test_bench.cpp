@@ -340,3 +340,19 @@ TEST(OffscreenContext, EglRendersAFrame) {
     EXPECT_GT(sum, 0.0);
     EXPECT_THROW(gl::OffscreenContext("vulkan"), std::runtime_error);
 }
+
+// A user's --set wins over a configuration's preset (preset_quality with radiosity.min_mip=0 runs min_mip 0), but not
+// over the assignment that makes the configuration what it is (direct_only stays direct only).
+TEST(BenchConfigs, UserSettingsWinOverAPresetNotOverTheConfiguration) {
+    const std::vector<std::string> user = {"radiosity.min_mip=0", "radiosity.enabled=true"};
+    Settings base;
+    for (const auto& a : user) applyAssignment(base, a);
+    const BenchConfig quality{"preset_quality", "quality", {}, ""}, direct{"direct_only", "", {"radiosity.enabled=false"}, ""};
+    const Settings q = configSettings(base, quality, user);
+    EXPECT_EQ(q.minMip, 0);
+    Settings presetOnly;
+    applyPreset(presetOnly, "quality");
+    EXPECT_EQ(q.numSamples, presetOnly.numSamples);  // the rest of the preset stays
+    EXPECT_EQ(configSettings(base, quality).minMip, presetOnly.minMip);  // without the user's list: the preset's
+    EXPECT_FALSE(configSettings(base, direct, user).indirect);
+}
