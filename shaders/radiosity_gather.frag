@@ -107,23 +107,30 @@ void marchOccluded(vec2 a, vec2 b, float hY, vec3 X, vec3 nX, vec3 Y0, vec3 n0, 
         if (isSky(d1)) continue;
         vec2 src = vec2(sourcePixel(T, m, size)) + 0.5;
         float t = clamp(dot(src - a, ab) * abInv, 0.0, 1.0);
-        vec3 S = worldFromDepth(src, d1, uInvViewProj);
-        bool onX = abs(dot(S - X, nX)) < e0;
-        bool block0 = test0 && !onX && !(abs(dot(S - Y0, n0)) < e0);
-        bool block1 = test1 && !(abs(dot(S - X, nX)) < e1) && !(abs(dot(S - Y1, n1)) < e1);
         float z1 = eyeDepthCurrent(d1);
-        float thick = uThickness;
+        float lo = z1 + 0.05 * uThickness + 2e-3 * z1, hi = z1 + uThickness;
+        float w0 = mix(iX, i0, t), w1 = mix(iX, i1, t);
+        float zP0 = persp ? 1.0 / w0 : w0, zP1 = persp ? 1.0 / w1 : w1;
+        // The cheap tests first (the depth interval at the largest thickness); the second layer's depth and the
+        // sample's world point only for the few samples that pass.
+        bool in0 = test0 && !occ0 && zP0 > lo && zP0 < hi;
+        bool in1 = test1 && !occ1 && zP1 > lo && zP1 < hi;
+        if (!(in0 || in1)) continue;
 #ifndef DEEPGI_SINGLE_LAYER
         if (twoLayers) {
             float d2 = texelFetch(uDepth, ivec3(T, 1), m).r;
-            if (!isSky(d2)) thick = min(thick, eyeDepthCurrent(d2) - z1);
+            if (!isSky(d2)) {
+                float hi2 = eyeDepthCurrent(d2);  // the surface's back: behind it the segment passes
+                in0 = in0 && zP0 < hi2;
+                in1 = in1 && zP1 < hi2;
+            }
+            if (!(in0 || in1)) continue;
         }
 #endif
-        float lo = z1 + 0.05 * uThickness + 2e-3 * z1, hi = z1 + thick;
-        float w0 = mix(iX, i0, t), w1 = mix(iX, i1, t);
-        float zP0 = persp ? 1.0 / w0 : w0, zP1 = persp ? 1.0 / w1 : w1;
-        occ0 = occ0 || (block0 && zP0 > lo && zP0 < hi);
-        occ1 = occ1 || (block1 && zP1 > lo && zP1 < hi);
+        vec3 S = worldFromDepth(src, d1, uInvViewProj);
+        float onXPlane = abs(dot(S - X, nX));
+        occ0 = occ0 || (in0 && !(onXPlane < e0) && !(abs(dot(S - Y0, n0)) < e0));
+        occ1 = occ1 || (in1 && !(onXPlane < e1) && !(abs(dot(S - Y1, n1)) < e1));
         if ((occ0 || !test0) && (occ1 || !test1)) break;
     }
 }
