@@ -45,6 +45,7 @@ struct GpuLight {
     glm::vec4 radiance, position, direction, params;
     glm::mat4 shadowMatrix;
 };
+static_assert(sizeof(GpuLight) == kGpuLightBytes, "GpuLight must match shaders/lighting.glsl");
 
 double steadyMs() {
     return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now().time_since_epoch()).count();
@@ -281,6 +282,7 @@ void Renderer::setupLights(const Settings& s) {
     const uint64_t sceneVersion = sceneGpu_->version();  // objects moved or hidden: the shadows are redrawn
     key = fnv1a(key, &sceneVersion, sizeof(sceneVersion));
     if (key == shadowKey_) return;  // lights unchanged: the buffer already holds them (static scenes)
+    if (gpu.size() < size_t(kBlockLights)) gpu.resize(kBlockLights);  // the uniform block's whole range is defined
     glNamedBufferData(lightSsbo_.id(), GLsizeiptr(gpu.size() * sizeof(GpuLight)), gpu.data(), GL_DYNAMIC_DRAW);
     shadowKey_ = key;
 }

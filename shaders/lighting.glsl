@@ -9,6 +9,14 @@ struct GpuLight {
 };
 layout(std430, binding = 1) readonly buffer Lights { GpuLight uLights[]; };
 const int MAX_LIGHTS = 16384;  // kMaxGpuLights (renderer/scene/lighting.h); the renderer refuses more
+// The first lights again, as a uniform block over the same buffer (kBlockLights): llvmpipe loads a storage buffer
+// per lane and a uniform block once per batch; with the sun alone the storage-buffer loop was 2/3 of the pass.
+const int MAX_BLOCK_LIGHTS = 32;
+layout(std140, binding = 3) uniform LightBlock { GpuLight uLightBlock[MAX_BLOCK_LIGHTS]; };
+GpuLight lightAt(int i) {
+    if (i < MAX_BLOCK_LIGHTS) return uLightBlock[i];
+    return uLights[i];
+}
 uniform int uLightCount;
 uniform float uShadowBias;  // in shadow-map texels
 uniform sampler2DArrayShadow uShadowMaps;
@@ -51,7 +59,7 @@ vec3 directIrradiance(vec3 P, vec3 n) {
     vec3 E = vec3(0.0);
     for (int i = 0; i < MAX_LIGHTS; ++i) {
         if (i >= uLightCount) break;
-        GpuLight L = uLights[i];
+        GpuLight L = lightAt(i);
         int type = int(L.radiance.w);
         vec3 toLight;
         float dist;
@@ -109,7 +117,7 @@ vec3 directIrradianceAndSpecular(vec3 P, vec3 n, vec3 v, vec4 spec, out vec3 Ls)
     bool specular = any(greaterThan(spec.rgb, vec3(0.0)));
     for (int i = 0; i < MAX_LIGHTS; ++i) {
         if (i >= uLightCount) break;
-        GpuLight L = uLights[i];
+        GpuLight L = lightAt(i);
         vec3 toLight;
         float dist;
         vec3 radiance = lightArrival(L, P, toLight, dist);

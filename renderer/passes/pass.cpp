@@ -1,5 +1,7 @@
 #include "renderer/passes/pass.h"
 
+#include "renderer/scene/lighting.h"
+
 #include <algorithm>
 #include <stdexcept>
 
@@ -147,6 +149,7 @@ int FrameContext::radiosityHeight() const {
 
 void LightingUniforms::set(const FrameContext& ctx) const {
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, ctx.lightBuffer);
+    glBindBufferRange(GL_UNIFORM_BUFFER, 3, ctx.lightBuffer, 0, GLsizeiptr(kBlockLights * kGpuLightBytes));
     count.set(ctx.lightCount);
     const LightSettings& light = ctx.settings;
     shadowBias.set(light.shadowBias);

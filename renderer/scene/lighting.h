@@ -11,6 +11,10 @@ namespace deepgi {
 // Most lights the GL renderer draws: MAX_LIGHTS of shaders/lighting.glsl, the constant bound of its light loop
 // (the shadow-map layers, GL_MAX_ARRAY_TEXTURE_LAYERS, run out well before it). More is an error of the renderer.
 inline constexpr int kMaxGpuLights = 16384;
+// The first lights are also read through a uniform block (shaders/lighting.glsl MAX_BLOCK_LIGHTS): llvmpipe reads a
+// uniform block once per draw's SIMD batch, a storage buffer per lane (the light loop was 2/3 of the input radiance).
+inline constexpr int kBlockLights = 32;
+inline constexpr int kGpuLightBytes = 128;  // sizeof(GpuLight), std430 = std140 for its vec4s and mat4
 
 // The scene's lights scaled by light.intensity_scale, or the default sun from the settings when it has none.
 std::vector<Light> effectiveLights(const Scene& scene, const Settings& s);
