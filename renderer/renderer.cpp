@@ -191,6 +191,11 @@ PipelineConfig Renderer::makeConfig(const Settings& s) const {
         const bool half = s.radiosityResolution == RadiosityResolution::Half ||
                           (s.radiosityResolution == RadiosityResolution::Auto && software);
         c.radiosityDownsample = half ? 2 : 1;
+        // The interleaved gather reuses the temporal filter's history: without the filter there is none.
+        const RadiosityInterleave il = s.interleave == RadiosityInterleave::Auto
+                                           ? (software ? RadiosityInterleave::Two : RadiosityInterleave::Off)
+                                           : s.interleave;
+        c.gatherInterleave = !s.temporal ? 1 : il == RadiosityInterleave::Two ? 2 : il == RadiosityInterleave::Four ? 4 : 1;
     }
     if (probes_) {
         c.probes = s.probesEnabled && s.indirect;  // the indirect fallback; the volume may exist for the sky alone
@@ -536,6 +541,7 @@ FrameContext Renderer::makeContext(const Settings& s) {
                      lightCount_, casters_, shadowKey_, frameWidth(), frameHeight(), historyValid_,
                      s.varyTaps ? float(frameIndex_ % 1024) * 0.618034f : 0.0f, probes_.get(), probeUbo_.id()};
     ctx.environment = scene_->environment.get();
+    ctx.frameIndex = frameIndex_;
     return ctx;
 }
 

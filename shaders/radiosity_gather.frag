@@ -10,7 +10,16 @@
 // Gather Coverage (the confidence where the screen has no data); the probes fill the rest, per hemisphere sector
 // (probes.directional_fill) or as the uncovered share of their irradiance.
 #include "common.glsl"
+#ifdef DEEPGI_INTERLEAVE
+// radiosity.interleave: 1 in uInterleave blocks gathers this frame; the others reuse last frame's filtered irradiance
+// where its reprojection is fully trusted (the temporal filter's own test). reprojection.glsl declares uDepth too.
+#include "reprojection.glsl"
+uniform sampler2D uReprojected;
+uniform int uInterleave;      // 2 or 4
+uniform int uInterleaveSlot;  // this frame's blocks
+#else
 uniform sampler2DArray uDepth;
+#endif
 uniform sampler2DArray uNormal;
 uniform sampler2DArray uRadiance;
 uniform int uNumSamples;
@@ -193,7 +202,23 @@ void main() {
     vec3 V = viewDirection(X);  // the probes' view bias: towards the camera, the surface's visible side
 #endif
     vec3 sum = vec3(0.0);
-    float covered = 0.0;
+    float covered = 0.0;  // stays 0 where the interleaved gather reuses the history (Gather Coverage shows so)
+#ifdef DEEPGI_INTERLEAVE
+    int gatherRuns = 1;
+    ivec2 block = ivec2(gl_FragCoord.xy) >> 2;  // llvmpipe shades 4x4 blocks: a block gathers whole or not at all
+    int slot = uInterleave == 2 ? ((block.x + block.y) & 1) : ((block.x & 1) | ((block.y & 1) << 1));
+    if (slot != uInterleaveSlot) {
+        vec2 prevUV;
+        if (reprojectionWeight(pix, prevUV) >= 0.999) {
+            sum = texelFetch(uReprojected, ivec2(gl_FragCoord.xy), 0).rgb;
+            gatherRuns = 0;
+        }
+    }
+    // The gather below, unindented, as a loop of gatherRuns (0 or 1) passes: llvmpipe leaves a loop once all its
+    // lanes are done, where it would run both sides of an if.
+    for (int run = 0; run < 1; ++run) {
+        if (run >= gatherRuns) break;
+#endif
 #ifdef DEEPGI_PROBE_DIRECTIONAL_FILL
     // Per sector: the covered cosine-weighted share and the taps' irradiance. The frame turns with the spiral.
     // As vec4 pairs (sectors 0-3, 4-7) added to through one-hot masks: llvmpipe turns an array indexed per pixel
@@ -315,6 +340,9 @@ void main() {
 #if defined(DEEPGI_PROBES) && !defined(DEEPGI_PROBE_DIRECTIONAL_FILL)
     // The directions the screen did not cover (off screen, beyond the radius, hidden) take the probes' light.
     sum += (1.0 - covered) * probeIrradiance(X, nX, V);
+#endif
+#ifdef DEEPGI_INTERLEAVE
+    }
 #endif
     oIrradiance = sanitizeR11G11B10(sum, gl_FragCoord.xy);
     oCoverage = covered;

@@ -10,6 +10,7 @@ namespace deepgi {
 enum class GBufferGeneration { Predicted, DepthPeel };
 enum class FilterOrder { BlurFirst, TemporalFirst };
 enum class RadiosityResolution { Auto, Full, Half };
+enum class RadiosityInterleave { Auto, Off, Two, Four };
 enum class CompositeMode { Physical, Seed };
 enum class Tonemap { Clamp, Aces };
 

@@ -52,6 +52,8 @@ struct PipelineConfig {
     // The gather, blur and temporal filter run on a grid d times coarser (radiosity pixel p stands for the screen
     // pixel p * d + d / 2); the composite upsamples by depth and normal.
     int radiosityDownsample = 1;
+    // radiosity.interleave: the gather runs on 1 in N blocks per frame, the others reuse the reprojected history.
+    int gatherInterleave = 1;
     SizeRule radiositySize() const { return SizeRule::screen(1.0f / float(radiosityDownsample)); }
     bool operator==(const PipelineConfig& o) const;
 };
@@ -154,6 +156,7 @@ struct FrameContext {
     ProbeVolume* probes; // the world-space fallback (null when config.probes is false)
     GLuint probeUniforms;  // its uniform block (probe_volume.glsl), bound at 2
     const EnvironmentMap* environment = nullptr;  // the scene's environment map (null = none)
+    uint64_t frameIndex = 0;  // frames rendered before this one (the interleaved gather's turn)
     // Set by the renderer for the pass that runs.
     const RenderPass* pass = nullptr;
     const PassTable* table = nullptr;

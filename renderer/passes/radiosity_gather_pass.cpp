@@ -1,6 +1,7 @@
 #include "renderer/passes/radiosity_gather_pass.h"
 
 #include "renderer/passes/probe_update_pass.h"
+#include "renderer/passes/reproject_radiance_pass.h"
 
 #include <algorithm>
 #include <cmath>
@@ -26,6 +27,11 @@ int spiralTurns(int n) {
 void RadiosityGatherPass::table(const PipelineConfig& c, PassTable& t) const {
     t.read("Depth", "uDepth");
     t.read("Normal", "uNormal");
+    if (c.gatherInterleave > 1) {  // the blocks not gathered this frame take the reprojected history
+        t.read("Last Depth", "uLastDepthTex");  // reprojection.glsl's inputs besides Depth (readReprojectionInputs)
+        if (c.objectMotion) t.read("Motion", "uMotion");
+        t.read("Reprojected Radiance", "uReprojected");
+    }
     t.read("Input Radiance", "uRadiance");
     if (c.probes) readProbeVolume(t);  // the part of the hemisphere the screen does not cover
     if (c.probeDirectionalFill) readProbeRadiance(t);  // per sector
@@ -51,6 +57,11 @@ void RadiosityGatherPass::execute(FrameContext& ctx) {
     if (!ctx.config.layer2) defines.push_back("DEEPGI_SINGLE_LAYER");
     if (ctx.config.probes) defines.push_back("DEEPGI_PROBES");
     if (ctx.config.probeDirectionalFill) defines.push_back("DEEPGI_PROBE_DIRECTIONAL_FILL");
+    const int interleave = ctx.config.gatherInterleave;
+    if (interleave > 1) {
+        defines.push_back("DEEPGI_INTERLEAVE");
+        for (const std::string& d : reprojectionDefines(ctx.config)) defines.push_back(d);
+    }
     Program& prog = program_.get(ctx.shaders, {"fullscreen.vert", "", "radiosity_gather.frag", "", defines});
     const int levels = ctx.entry("Input Radiance").decl.levels;
     const int maxMip = std::max(0, std::min(5, levels - 1));
@@ -65,6 +76,12 @@ void RadiosityGatherPass::execute(FrameContext& ctx) {
     prog.time.set(s.varyTaps ? ctx.time : 0.0f);
     prog.thickness.set(ctx.settings.minSeparation);
     prog.visibilitySteps.set(s.visibilitySteps);
+    prog.reprojection.set(ctx);
+    // The blocks' turn: 2 = a checkerboard alternating; 4 = one corner of every 2x2 blocks, the diagonal ones first
+    // (slots 0, 3, 1, 2), so that consecutive frames gather far apart.
+    static const int kFourOrder[4] = {0, 3, 1, 2};
+    prog.interleave.set(interleave);
+    prog.interleaveSlot.set(interleave == 4 ? kFourOrder[ctx.frameIndex % 4] : int(ctx.frameIndex % uint64_t(std::max(interleave, 1))));
     if (ctx.config.probes) bindProbeUniforms(ctx);
     ctx.bindSamplers(prog);
     GLuint fbo = ctx.fbos.get({{GL_COLOR_ATTACHMENT0, ctx.texture("Output Radiance")},

@@ -24,6 +24,14 @@ struct ReprojectionUniforms {
     gl::Uniform<float> falloffStart, falloffEnd;
     gl::Uniform<bool> historyValid;
 };
+// The same for a program whose variants without reprojection (the gather without interleave) lack them.
+struct OptionalReprojectionUniforms {
+    explicit OptionalReprojectionUniforms(gl::Program& p)
+        : falloffStart(p, "uFalloffStart"), falloffEnd(p, "uFalloffEnd"), historyValid(p, "uHistoryValid") {}
+    void set(const FrameContext& ctx) const;
+    gl::OptionalUniform<float> falloffStart, falloffEnd;
+    gl::OptionalUniform<bool> historyValid;
+};
 // The textures reprojection.glsl samples: this frame's layer-1 depth and last frame's (Last Depth).
 void readReprojectionInputs(const PipelineConfig& c, PassTable& t);
 // Its shader defines: OBJECT_MOTION where the Motion texture exists (else the camera's motion alone).

@@ -1,5 +1,7 @@
 #include "renderer/passes/temporal_blend_pass.h"
 
+#include <algorithm>
+
 namespace deepgi {
 
 TextureDecl radiosityScratch(const PipelineConfig& c) {
@@ -23,7 +25,10 @@ void TemporalBlendPass::execute(FrameContext& ctx) {
     const GLuint scratch = ctx.texture("Radiosity Scratch"), output = ctx.texture("Output Radiance");
     Program& prog = program_.get(ctx.shaders, {"fullscreen.vert", "", "temporal_blend.frag", "", reprojectionDefines(ctx.config)});
     prog.reprojection.set(ctx);
-    prog.alpha.set(s.hysteresis);
+    // With the interleaved gather about 1 in N of the blurred values is new this frame (the rest is the history
+    // itself): the history weight that keeps temporal.alpha's response, 1 - alpha' = N (1 - alpha).
+    const int n = ctx.config.gatherInterleave;
+    prog.alpha.set(n > 1 ? std::max(0.0f, 1.0f - float(n) * (1.0f - s.hysteresis)) : s.hysteresis);
     ctx.bindSamplers(prog);
     const int w = ctx.radiosityWidth(), h = ctx.radiosityHeight();
     ctx.drawFullscreen(prog.id(), ctx.fbos.get({{GL_COLOR_ATTACHMENT0, scratch}}, "radiosity scratch"), w, h);
