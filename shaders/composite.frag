@@ -15,7 +15,6 @@ uniform sampler2D uDirect;          // Direct Radiance: rho/pi * shadowed E_dire
 uniform sampler2DArray uOcclusion;  // the material's occlusion texture: darkens indirect light only
 #endif
 uniform int uHasEmission;
-uniform int uIndirectOn;
 uniform int uSeedMode;
 uniform float uExposure;   // linear scale 2^EV
 uniform int uTonemap;      // 0 clamp, 1 ACES fit
@@ -73,7 +72,11 @@ void main() {
         vec3 albedo = texelFetch(uAlbedo, ivec3(pix, 0), 0).rgb;
         vec3 P = worldFromDepth(vec2(pix) + 0.5, d, uInvViewProj);
         vec3 n = octDecode(texelFetch(uNormal, ivec3(pix, 0), 0).rg);
-        vec3 E = uIndirectOn != 0 ? indirectAt(pix, P, n) : vec3(0.0);
+#ifdef DEEPGI_NO_INDIRECT  // radiosity.enabled=false: no Output Radiance
+        vec3 E = vec3(0.0);
+#else
+        vec3 E = indirectAt(pix, P, n);
+#endif
 #ifdef OCCLUSION
         E *= texelFetch(uOcclusion, ivec3(pix, 0), 0).r;
 #endif

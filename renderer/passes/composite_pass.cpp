@@ -33,10 +33,11 @@ void CompositePass::execute(FrameContext& ctx) {
     const CompositeSettings& s = ctx.settings;
     std::vector<std::string> defines = materialDefines(ctx.config);
     if (ctx.config.environmentMap) defines.push_back("DEEPGI_ENVIRONMENT_MAP");
+    // Direct light only: a variant without the upsample (llvmpipe ran it under the uniform test, 2/3 of the pass).
+    if (!ctx.config.indirect) defines.push_back("DEEPGI_NO_INDIRECT");
     Program& prog = program_.get(ctx.shaders, {"fullscreen.vert", "", "composite.frag", "", defines});
     prog.environment.set(environmentUniform(ctx));
     prog.hasEmission.set(ctx.config.emission);
-    prog.indirectOn.set(ctx.config.indirect);
     prog.seedMode.set(ctx.config.seedComposite);
     prog.exposure.set(std::exp2(s.exposure));
     prog.tonemap.set(int(s.tonemap));

@@ -15,7 +15,6 @@ private:
     struct Program : gl::Program {
         using gl::Program::Program;
         gl::Uniform<bool> hasEmission{*this, "uHasEmission"};
-        gl::Uniform<bool> indirectOn{*this, "uIndirectOn"};
         gl::Uniform<bool> seedMode{*this, "uSeedMode"};
         gl::Uniform<float> exposure{*this, "uExposure"};
         gl::Uniform<int> tonemap{*this, "uTonemap"};
