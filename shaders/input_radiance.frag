@@ -14,7 +14,6 @@ uniform sampler2DArray uSpecular;   // F0 rgb, roughness (SPECULAR: scenes with 
 uniform sampler2DArray uOcclusion;  // the occlusion texture (OCCLUSION)
 uniform int uLayer;
 uniform int uHasEmission;
-uniform int uFeedback;      // add last frame's indirect light (multi-bounce)
 uniform float uDamping;
 uniform int uSourceLevel;   // this draw fills mip level uSourceLevel: each texel is its level-0 source sample's
 #if defined(DEEPGI_PROBES) || defined(DEEPGI_SKY)
@@ -52,10 +51,11 @@ void main() {
 #endif
     oDirect = vec4(sanitize(albedo / PI * E + Ls), 1.0);  // radiance: below the clamp wherever the final image is
     vec3 Eind = vec3(0.0);
-    if (uFeedback != 0 && uLayer == 0) Eind = (1.0 - uDamping) * texelFetch(uReprojected, radiosityPixelOfScreen(pix), 0).rgb;
-#ifdef DEEPGI_PROBES
+#ifdef DEEPGI_HISTORY_FEEDBACK  // layer 1 with a history: last frame's indirect light (multi-bounce)
+    Eind = (1.0 - uDamping) * texelFetch(uReprojected, radiosityPixelOfScreen(pix), 0).rgb;
+#elif defined(DEEPGI_PROBES)
     // Layer 2 has no gathered light of its own, nor layer 1 before there is a history: the probes give theirs.
-    else Eind = (1.0 - uDamping) * probeIrradiance(P, n, probeView);
+    Eind = (1.0 - uDamping) * probeIrradiance(P, n, probeView);
 #endif
 #ifdef OCCLUSION
     Eind *= texelFetch(uOcclusion, ivec3(pix, uLayer), 0).r;  // occlusion textures darken indirect light only

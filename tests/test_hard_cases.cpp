@@ -332,7 +332,13 @@ TEST_F(GLTest, HalfTurnEveryFrameReprojectsNothing) {
 // (H: Reprojected Radiance) bounds every pixel's smear |E - F| by alpha |H - F| (+ three R11G11B10 steps of rounding).
 TEST_F(GLTest, FastTranslationBoundedSmearing) {
     auto scene = cornellScene();
-    const Settings s = motionSettings();
+    // The law is the temporal blend's over a gather of every pixel: with radiosity.interleave the reusing blocks'
+    // own irradiance is the history itself (tests/test_interleaved_gather.cpp checks that path).
+    const Settings s = [] {
+        Settings m = motionSettings();
+        m.interleave = RadiosityInterleave::Off;
+        return m;
+    }();
     Settings noTemporal = s;
     noTemporal.temporal = false;
     Renderer r, twin;

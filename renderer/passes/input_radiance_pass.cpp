@@ -46,13 +46,20 @@ void InputRadiancePass::execute(FrameContext& ctx) {
     if (ctx.config.specular) defines.push_back("SPECULAR");
     if (ctx.config.occlusion) defines.push_back("OCCLUSION");
     if (ctx.config.sky) defines.push_back("DEEPGI_SKY");
-    RadianceProgram& prog = radiance_.get(ctx.shaders, {"fullscreen.vert", "", "input_radiance.frag", "", defines});
     if (ctx.config.probes || ctx.config.sky) bindProbeUniforms(ctx);
-    prog.lighting.set(ctx);
-    prog.hasEmission.set(ctx.config.emission);
-    prog.feedback.set(ctx.config.indirect && ctx.historyValid);
-    prog.damping.set(s.damping);
-    ctx.bindSamplers(prog);
+    // Layer 1 with a history takes last frame's gathered light, the rest the probes': two variants, since llvmpipe
+    // runs both sides of an if (the probe lookup under a uniform test was a fifth of the pass).
+    const bool feedback = ctx.config.indirect && ctx.historyValid;
+    auto program = [&](int layer) -> RadianceProgram& {
+        std::vector<std::string> d = defines;
+        if (feedback && layer == 0) d.push_back("DEEPGI_HISTORY_FEEDBACK");
+        RadianceProgram& p = radiance_.get(ctx.shaders, {"fullscreen.vert", "", "input_radiance.frag", "", d});
+        p.lighting.set(ctx);
+        p.hasEmission.set(ctx.config.emission);
+        p.damping.set(s.damping);
+        ctx.bindSamplers(p);
+        return p;
+    };
     // No layer-2 work when layer 2 is off, nor without indirect light (layer 1's direct light only). Layer 2 goes
     // straight to the gather's finest level (none finer is read: the seed composite reads layer 1 alone).
     const int layers = radianceOut && ctx.config.layer2 ? 2 : 1;
@@ -64,6 +71,7 @@ void InputRadiancePass::execute(FrameContext& ctx) {
                                GL_RGB, GL_FLOAT, nullptr);
     for (int layer = 0; layer < layers; ++layer) {
         const int level = layer == 1 ? layer2Level : 0;
+        RadianceProgram& prog = program(layer);
         prog.layer.set(layer);
         prog.sourceLevel.set(level);
         GLuint fbo = !radianceOut ? ctx.fbos.get({{GL_COLOR_ATTACHMENT1, direct}}, "direct irradiance")

@@ -20,8 +20,7 @@ private:
         LightingUniforms lighting{*this};
         gl::Uniform<int> layer{*this, "uLayer"};
         gl::Uniform<bool> hasEmission{*this, "uHasEmission"};
-        gl::Uniform<bool> feedback{*this, "uFeedback"};
-        gl::Uniform<float> damping{*this, "uDamping"};
+        gl::OptionalUniform<float> damping{*this, "uDamping"};  // unused without indirect light
         gl::Uniform<int> sourceLevel{*this, "uSourceLevel"};
     };
     struct MipProgram : gl::Program {
