@@ -282,6 +282,30 @@ TEST_F(GLTest, BilateralBlurPreservesConstant) {
             for (int c = 0; c < 3; ++c) ASSERT_NEAR(out.at(x, y, c), k[c], 1e-6f) << x << "," << y;
 }
 
+namespace {
+// Renders two still frames of the Cornell box, fills this frame's irradiance with cur and the reprojected history
+// with prev, runs the temporal blend alone and checks every surface pixel against historyWeight * prev + (1 -
+// historyWeight) * cur, within `tolerance` of the value (R11G11B10 rounding).
+void expectTemporalBlend(Renderer& r, const Settings& s, float historyWeight, float tolerance) {
+    r.render(s);
+    r.render(s);
+    const glm::vec3 cur(1.0f, 2.0f, 4.0f), prev(3.0f, 0.5f, 8.0f);
+    fillTexture(r.textures().id("Output Radiance"), cur);
+    fillTexture(r.textures().id("Reprojected Radiance"), prev);
+    r.executePass("Temporal blend", s);
+    const FloatImage out = r.readLayer("Output Radiance"), depth = r.readLayer("Depth 1");
+    const glm::vec3 expect = historyWeight * prev + (1.0f - historyWeight) * cur;
+    int checked = 0;
+    for (int y = 0; y < out.height; ++y)
+        for (int x = 0; x < out.width; ++x) {
+            if (depth.at(x, y, 0) >= r.camera().zfar * 0.99f) continue;
+            ++checked;
+            for (int c = 0; c < 3; ++c) ASSERT_NEAR(out.at(x, y, c), expect[c], tolerance * expect[c]) << x << "," << y;
+        }
+    EXPECT_GT(checked, 1000);
+}
+}  // namespace
+
 // The temporal blend follows E = a*w*E_reprojected + (1 - a*w)*E_current, w = 1 for a still camera.
 TEST_F(GLTest, TemporalBlendFollowsFormula) {
     auto scene = cornellScene();
@@ -291,24 +315,9 @@ TEST_F(GLTest, TemporalBlendFollowsFormula) {
     s.hysteresis = 0.75f;
     s.radiosityResolution = RadiosityResolution::Full;  // compared with Depth 1 pixel by pixel
     s.interleave = RadiosityInterleave::Off;  // the plain blend (the interleaved one: the test below)
-    r.render(s);
-    r.render(s);
-    const glm::vec3 cur(1.0f, 2.0f, 4.0f), prev(3.0f, 0.5f, 8.0f);
-    fillTexture(r.textures().id("Output Radiance"), cur);
-    fillTexture(r.textures().id("Reprojected Radiance"), prev);
-    r.executePass("Temporal blend", s);
-    FloatImage out = r.readLayer("Output Radiance");
-    FloatImage depth = r.readLayer("Depth 1");
-    glm::vec3 expect = 0.75f * prev + 0.25f * cur;
-    int checked = 0;
-    for (int y = 0; y < out.height; ++y)
-        for (int x = 0; x < out.width; ++x) {
-            if (depth.at(x, y, 0) >= r.camera().zfar * 0.99f) continue;
-            ++checked;
-            for (int c = 0; c < 3; ++c) ASSERT_NEAR(out.at(x, y, c), expect[c], 0.02f * expect[c]) << x << "," << y;
-        }
-    EXPECT_GT(checked, 1000);
+    expectTemporalBlend(r, s, 0.75f, 0.02f);
     // Without history the current value passes through.
+    const glm::vec3 cur(1.0f, 2.0f, 4.0f);
     r.resetHistory();
     fillTexture(r.textures().id("Output Radiance"), cur);
     r.executePass("Temporal blend", s);
@@ -318,31 +327,15 @@ TEST_F(GLTest, TemporalBlendFollowsFormula) {
 
 // With the interleaved gather about 1 in N of the blurred values is new each frame, so the blend weighs the history
 // 1 - N (1 - alpha): 0.5 at N = 2 and alpha = 0.75, which keeps alpha's response (test_interleaved_gather.cpp).
+// Within one R11G11B10 step of blue (0.125 at 6: 2.1 %; the uncompensated weight 0.75 would give 7).
 TEST_F(GLTest, InterleavedTemporalBlendWeighsTheHistoryOneMinusNTimesOneMinusAlpha) {
     auto scene = cornellScene();
     auto renderer = rendererFor(scene, 96, 72, "front");
-    Renderer& r = *renderer;
     Settings s;
     s.hysteresis = 0.75f;
     s.radiosityResolution = RadiosityResolution::Full;
     s.interleave = RadiosityInterleave::Two;
-    r.render(s);
-    r.render(s);
-    const glm::vec3 cur(1.0f, 2.0f, 4.0f), prev(3.0f, 0.5f, 8.0f);
-    fillTexture(r.textures().id("Output Radiance"), cur);
-    fillTexture(r.textures().id("Reprojected Radiance"), prev);
-    r.executePass("Temporal blend", s);
-    const FloatImage out = r.readLayer("Output Radiance"), depth = r.readLayer("Depth 1");
-    const glm::vec3 expect = 0.5f * prev + 0.5f * cur;
-    int checked = 0;
-    for (int y = 0; y < out.height; ++y)
-        for (int x = 0; x < out.width; ++x) {
-            if (depth.at(x, y, 0) >= r.camera().zfar * 0.99f) continue;
-            ++checked;
-            // Within one R11G11B10 step of blue (0.125 at 6: 2.1 %; the uncompensated weight 0.75 would give 7).
-            for (int c = 0; c < 3; ++c) ASSERT_NEAR(out.at(x, y, c), expect[c], 0.03f * expect[c]) << x << "," << y;
-        }
-    EXPECT_GT(checked, 1000);
+    expectTemporalBlend(*renderer, s, 0.5f, 0.03f);
 }
 
 // The memory report of the seed layout: 176 bits per pixel of G-buffer, 128 of radiosity (at full resolution; a

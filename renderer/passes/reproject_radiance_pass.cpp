@@ -13,20 +13,6 @@ std::vector<std::string> reprojectionDefines(const PipelineConfig& c) {
     return {};
 }
 
-void ReprojectionUniforms::set(const FrameContext& ctx) const {
-    const TemporalSettings& s = ctx.settings;
-    falloffStart.set(s.falloffStart);
-    falloffEnd.set(s.falloffEnd);
-    historyValid.set(ctx.historyValid);
-}
-
-void OptionalReprojectionUniforms::set(const FrameContext& ctx) const {
-    const TemporalSettings& s = ctx.settings;
-    falloffStart.set(s.falloffStart);
-    falloffEnd.set(s.falloffEnd);
-    historyValid.set(ctx.historyValid);
-}
-
 void ReprojectRadiancePass::table(const PipelineConfig& c, PassTable& t) const {
     readReprojectionInputs(c, t);
     // Last frame's filtered irradiance: unblurred (temporal_first) or the final Output Radiance.

@@ -16,22 +16,23 @@ private:
     gl::ProgramSlot<Program> program_;
 };
 
-// Uniforms of reprojection.glsl, shared by the reprojection and the temporal blend.
-struct ReprojectionUniforms {
-    explicit ReprojectionUniforms(gl::Program& p)
+// Uniforms of reprojection.glsl, shared by the reprojection, the temporal blend and the interleaved gather; U =
+// gl::OptionalUniform for a program whose variants without reprojection (the gather without interleave) lack them.
+template <template <class> class U>
+struct BasicReprojectionUniforms {
+    explicit BasicReprojectionUniforms(gl::Program& p)
         : falloffStart(p, "uFalloffStart"), falloffEnd(p, "uFalloffEnd"), historyValid(p, "uHistoryValid") {}
-    void set(const FrameContext& ctx) const;
-    gl::Uniform<float> falloffStart, falloffEnd;
-    gl::Uniform<bool> historyValid;
+    void set(const FrameContext& ctx) const {
+        const TemporalSettings& s = ctx.settings;
+        falloffStart.set(s.falloffStart);
+        falloffEnd.set(s.falloffEnd);
+        historyValid.set(ctx.historyValid);
+    }
+    U<float> falloffStart, falloffEnd;
+    U<bool> historyValid;
 };
-// The same for a program whose variants without reprojection (the gather without interleave) lack them.
-struct OptionalReprojectionUniforms {
-    explicit OptionalReprojectionUniforms(gl::Program& p)
-        : falloffStart(p, "uFalloffStart"), falloffEnd(p, "uFalloffEnd"), historyValid(p, "uHistoryValid") {}
-    void set(const FrameContext& ctx) const;
-    gl::OptionalUniform<float> falloffStart, falloffEnd;
-    gl::OptionalUniform<bool> historyValid;
-};
+using ReprojectionUniforms = BasicReprojectionUniforms<gl::Uniform>;
+using OptionalReprojectionUniforms = BasicReprojectionUniforms<gl::OptionalUniform>;
 // The textures reprojection.glsl samples: this frame's layer-1 depth and last frame's (Last Depth).
 void readReprojectionInputs(const PipelineConfig& c, PassTable& t);
 // Its shader defines: OBJECT_MOTION where the Motion texture exists (else the camera's motion alone).
