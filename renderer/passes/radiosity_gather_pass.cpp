@@ -42,7 +42,7 @@ void RadiosityGatherPass::table(const PipelineConfig& c, PassTable& t) const {
     t.write({"Gather Coverage", {"Gather Coverage"}, GL_R8, GL_TEXTURE_2D, c.radiositySize(), 1, MemoryGroup::Extra,
              Visualize::Color,
              "Share of the cosine-weighted hemisphere that the screen's visible surfaces covered in the gather (1 = all "
-             "light came from the screen; the probes give the rest)"});
+             "light came from the screen; the probes give the rest); 0 on the blocks that reused the history (radiosity.interleave)"});
     // Extra: a cache of what Depth and Normal hold, not part of the paper's radiosity layout.
     t.write({"Radiosity Geometry", {"Radiosity Geometry"}, GL_RGBA32F, GL_TEXTURE_2D, c.radiositySize(), 1,
              MemoryGroup::Extra, Visualize::Color,
