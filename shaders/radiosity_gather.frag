@@ -206,7 +206,7 @@ void main() {
     // The loops' lengths, 0 where an interleaved block reuses the history. llvmpipe runs both sides of every if and a
     // loop's first pass (masked), but leaves a loop once all its lanes are done: a reusing block pays one tap and one
     // sector, about a sixth of a gathered block (gather 0.58 x at interleave 2, 0.39 x at 4).
-    int taps = uNumSamples, sectors = 8;
+    int taps = uNumSamples, sectors = 8;  // sectors: the directional fill's FILL_SECTORS
     bool reuse = false;
 #ifdef DEEPGI_INTERLEAVE
     ivec2 block = ivec2(gl_FragCoord.xy) >> 2;  // llvmpipe shades 4x4 blocks: a block gathers whole or not at all

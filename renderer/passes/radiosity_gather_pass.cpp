@@ -76,12 +76,14 @@ void RadiosityGatherPass::execute(FrameContext& ctx) {
     prog.time.set(s.varyTaps ? ctx.time : 0.0f);
     prog.thickness.set(ctx.settings.minSeparation);
     prog.visibilitySteps.set(s.visibilitySteps);
-    prog.reprojection.set(ctx);
-    // The blocks' turn: 2 = a checkerboard alternating; 4 = one corner of every 2x2 blocks, the diagonal ones first
-    // (slots 0, 3, 1, 2), so that consecutive frames gather far apart.
-    static const int kFourOrder[4] = {0, 3, 1, 2};
-    prog.interleave.set(interleave);
-    prog.interleaveSlot.set(interleave == 4 ? kFourOrder[ctx.frameIndex % 4] : int(ctx.frameIndex % uint64_t(std::max(interleave, 1))));
+    if (interleave > 1) {
+        // The blocks' turn: 2 = a checkerboard alternating; 4 = one corner of every 2x2 blocks, the diagonal ones
+        // first (slots 0, 3, 1, 2), so that consecutive frames gather far apart.
+        static const int kFourOrder[4] = {0, 3, 1, 2};
+        prog.reprojection.set(ctx);
+        prog.interleave.set(interleave);
+        prog.interleaveSlot.set(interleave == 4 ? kFourOrder[ctx.frameIndex % 4] : int(ctx.frameIndex % 2));
+    }
     if (ctx.config.probes) bindProbeUniforms(ctx);
     ctx.bindSamplers(prog);
     GLuint fbo = ctx.fbos.get({{GL_COLOR_ATTACHMENT0, ctx.texture("Output Radiance")},
