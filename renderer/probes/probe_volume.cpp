@@ -544,9 +544,7 @@ ProbeUpdateStats ProbeVolume::update(const Settings& s) {
                                      sk + 2 * irrTexels, sk + 3 * irrTexels);
             }
             if (hasRadiance) {  // binned by direction: the texel of the octahedral map the ray leaves through
-                const glm::vec2 p = octahedral::encode(d) * 0.5f + 0.5f;
-                const int ti = std::min(int(p.x * float(radN_)), radN_ - 1), tj = std::min(int(p.y * float(radN_)), radN_ - 1);
-                float* rad = &newRad[(size_t(slot) * radTexels + size_t(std::max(tj, 0)) * radN_ + size_t(std::max(ti, 0))) * 4];
+                float* rad = &newRad[(size_t(slot) * radTexels + octTexel(d, radN_)) * 4];
                 for (int c = 0; c < 3; ++c) rad[c] += radiance[c];
                 rad[3] += 1.0f;
             }
