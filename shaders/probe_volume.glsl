@@ -98,14 +98,15 @@ bool probeCell(vec3 X, vec3 n, vec3 V, out ivec3 base, out vec3 alpha, out vec3 
 }
 
 // Corner i (0..7) of that cell: the probe's index (-1 = inside geometry or unused) and its unnormalised weight.
-int probeCorner(int i, ivec3 base, vec3 alpha, vec3 X, vec3 n, vec3 biased, vec2 depthSize, out float weight) {
+int probeCorner(int i, ivec3 base, vec3 alpha, vec3 X, vec3 n, vec3 biased, vec2 depthSize, out float weight,
+                out vec3 probePos) {
     weight = 0.0;
     ivec3 o = ivec3(i & 1, (i >> 1) & 1, (i >> 2) & 1);
     ivec3 c = base + o;
     int probe = c.x + uProbeCounts.x * (c.y + uProbeCounts.y * c.z);
     vec4 data = texelFetch(uProbeData, probeTile(probe), 0);
+    probePos = uProbeLo.xyz + (vec3(c) + 0.5) * uProbeSpacing.xyz + data.xyz;
     if (data.w < 0.5) return -1;  // inside geometry or unused
-    vec3 probePos = uProbeLo.xyz + (vec3(c) + 0.5) * uProbeSpacing.xyz + data.xyz;
     vec3 tri3 = mix(1.0 - alpha, alpha, vec3(o));
     float trilinear = max(0.001, tri3.x * tri3.y * tri3.z);
     // Smooth back-face term: probes behind the surface count less.
@@ -143,7 +144,8 @@ vec4 probeAtlasWeighted(sampler2D atlas, vec3 X, vec3 n, vec3 V) {
     float total = 0.0;
     for (int i = 0; i < 8; ++i) {
         float weight;
-        int probe = probeCorner(i, base, alpha, X, n, biased, depthSize, weight);
+        vec3 probePos;
+        int probe = probeCorner(i, base, alpha, X, n, biased, depthSize, weight, probePos);
         if (probe < 0) continue;
         sum += weight * texture(atlas, probeAtlasUv(probe, uProbeTexels.x, n, atlasSize)).rgb;
         total += weight;
@@ -159,8 +161,10 @@ vec3 probeIrradiance(vec3 X, vec3 n, vec3 V) { return probeAtlasWeighted(uProbeI
 vec3 probeIrradiance(vec3 X, vec3 n) { return probeIrradiance(X, n, vec3(0.0)); }
 
 // The 8 probes around X (surface normal n) and their normalised weights (probe -1: none), once per receiver, for
-// probeRadianceAt() in as many directions as needed. False where no probe answers.
-bool probeSetAt(vec3 X, vec3 n, vec3 V, out int probes[8], out float weights[8]) {
+// probeRadianceAt() and probeHitFrom() in as many directions as needed; meanPos = the probes' weighted mean position.
+// False where no probe answers.
+bool probeSetAt(vec3 X, vec3 n, vec3 V, out int probes[8], out float weights[8], out vec3 meanPos) {
+    meanPos = X;
     for (int i = 0; i < 8; ++i) {
         probes[i] = -1;
         weights[i] = 0.0;
@@ -170,13 +174,24 @@ bool probeSetAt(vec3 X, vec3 n, vec3 V, out int probes[8], out float weights[8])
     if (!probeCell(X, n, V, base, alpha, biased)) return false;
     vec2 depthSize = vec2(textureSize(uProbeDepth, 0));
     float total = 0.0;
+    vec3 posSum = vec3(0.0);
     for (int i = 0; i < 8; ++i) {
-        probes[i] = probeCorner(i, base, alpha, X, n, biased, depthSize, weights[i]);
-        if (probes[i] >= 0) total += weights[i];
+        vec3 probePos;
+        probes[i] = probeCorner(i, base, alpha, X, n, biased, depthSize, weights[i], probePos);
+        if (probes[i] >= 0) {
+            total += weights[i];
+            posSum += weights[i] * probePos;
+        }
     }
     if (!(total > 0.0)) return false;
     for (int i = 0; i < 8; ++i) weights[i] /= total;
+    meanPos = posSum / total;
     return true;
+}
+
+bool probeSetAt(vec3 X, vec3 n, vec3 V, out int probes[8], out float weights[8]) {
+    vec3 meanPos;
+    return probeSetAt(X, n, V, probes, weights, meanPos);
 }
 
 // The irradiance on normal n at the receiver of probeSetAt() (as probeIrradiance(), without recomputing weights).
@@ -190,15 +205,23 @@ vec3 probeIrradianceAt(int probes[8], float weights[8], vec3 n) {
 
 // The radiance arriving from direction d (unit, away from the receiver) at the receiver of probeSetAt(): each
 // probe's texel that d leaves through, unfiltered (the gather's directions change every frame, its filters do the
-// rest; a filtered lookup costs llvmpipe 4 texels); C++: ProbeVolume::radiance().
-vec3 probeRadianceAt(int probes[8], float weights[8], vec3 d) {
+// rest; a filtered lookup costs llvmpipe 4 texels); C++: ProbeVolume::radiance(). a = the probes' mean distance along
+// d to the surface that light comes from (2 x the grid's diagonal for a miss).
+vec4 probeRadianceDistanceAt(int probes[8], float weights[8], vec3 d) {
     int n = uProbeTexels.w;
     ivec2 t = clamp(ivec2((probeOctEncode(d) * 0.5 + 0.5) * float(n)), ivec2(0), ivec2(n - 1));
-    vec3 sum = vec3(0.0);
+    vec4 sum = vec4(0.0);
     for (int i = 0; i < 8; ++i)
         if (probes[i] >= 0) {
             ivec2 origin = probeTile(probes[i]) * (n + 2) + 1;
-            sum += weights[i] * texelFetch(uProbeRadiance, origin + t, 0).rgb;
+            sum += weights[i] * texelFetch(uProbeRadiance, origin + t, 0);
         }
     return sum;
 }
+
+vec3 probeRadianceAt(int probes[8], float weights[8], vec3 d) { return probeRadianceDistanceAt(probes, weights, d).rgb; }
+
+// Where the light of probeRadianceDistanceAt(..., d) comes from: the probes' mean hit meanPos + t d (meanPos from
+// probeSetAt()), a point on that surface near where the ray from the receiver meets it (the probes stand up to a
+// spacing away; moving the point onto the receiver's ray puts it off a surface met at a grazing angle).
+vec3 probeHitFrom(vec3 meanPos, vec3 d, float t) { return meanPos + t * d; }

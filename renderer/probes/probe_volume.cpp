@@ -185,6 +185,7 @@ ProbeVolume::ProbeVolume(const Scene& scene, const Settings& s, uint64_t seed, i
     normalBias_ = s.probeNormalBias * grid_.minSpacing();
     setViewBias(s);
     maxDistance_ = 1.5f * glm::length(grid_.spacing);
+    missDistance_ = 2.0f * glm::length(glm::vec3(grid_.counts) * grid_.spacing);
     const int n = grid_.count();
     tilesPerRow_ = std::max(1, int(std::ceil(std::sqrt(double(n)))));
     tileRows_ = (n + tilesPerRow_ - 1) / tilesPerRow_;
@@ -203,6 +204,7 @@ ProbeVolume::ProbeVolume(const Scene& scene, const Settings& s, uint64_t seed, i
     }
     data_.assign(size_t(tilesPerRow_) * tileRows_ * 4, 0.0f);
     radiance_.assign(size_t(tilesPerRow_) * (radN_ + 2) * size_t(tileRows_) * (radN_ + 2) * 4, 0.0f);
+    radianceUpdates_.assign(radiance_.size() / 4, 0.0f);
     for (auto [dirs, n] : {std::pair{&irrDirs_, irrN_}, std::pair{&depthDirs_, depthN_}})
         for (int j = 0; j < n; ++j)
             for (int i = 0; i < n; ++i) {
@@ -366,7 +368,8 @@ void ProbeVolume::resetHistory() {
     // The bounce of the first updates reads the probes' own irradiance: none, as in a new volume (old light would
     // otherwise come back through it: a ghost of the old lighting, or multi-bounce light in a one-bounce run).
     for (size_t i = 0; i + 3 < irradiance_.size(); i += 4) irradiance_[i] = irradiance_[i + 1] = irradiance_[i + 2] = 0.0f;
-    std::fill(radiance_.begin(), radiance_.end(), 0.0f);  // values and per-texel update counts
+    std::fill(radiance_.begin(), radiance_.end(), 0.0f);  // values and distances
+    std::fill(radianceUpdates_.begin(), radianceUpdates_.end(), 0.0f);
     updateIndex_ = 0;
     cursor_ = 0;
     for (size_t i = 0; i + 3 < sky_.size(); i += 4) sky_[i] = sky_[i + 1] = sky_[i + 2] = 0.0f;
@@ -513,7 +516,8 @@ ProbeUpdateStats ProbeVolume::update(const Settings& s) {
     std::vector<float> newSky(sky ? batch.size() * irrTexels * 4 : 0, 0.0f);  // as newIrr, the uniform sky alone
     std::vector<float> newSkyMap(skySamples ? batch.size() * irrTexels * 4 : 0, 0.0f);  // the map: sum c L / pdf / n
     const size_t radTexels = size_t(radN_) * radN_;
-    std::vector<float> newRad(batch.size() * radTexels * 4, 0.0f);  // per slot and texel: sum of L (rgb), rays
+    // Per slot and texel: sum of L (rgb), rays, sum of the hit distances (missDistance_ for a miss).
+    std::vector<float> newRad(batch.size() * radTexels * 5, 0.0f);
     std::vector<uint8_t> inside(batch.size(), 0);
     std::atomic<uint64_t> shadowRays{0};
     parallelFor(int(batch.size()), threads_, [&](int slot) {
@@ -544,9 +548,10 @@ ProbeUpdateStats ProbeVolume::update(const Settings& s) {
                                      sk + 2 * irrTexels, sk + 3 * irrTexels);
             }
             if (hasRadiance) {  // binned by direction: the texel of the octahedral map the ray leaves through
-                float* rad = &newRad[(size_t(slot) * radTexels + octTexel(d, radN_)) * 4];
+                float* rad = &newRad[(size_t(slot) * radTexels + octTexel(d, radN_)) * 5];
                 for (int c = 0; c < 3; ++c) rad[c] += radiance[c];
                 rad[3] += 1.0f;
+                rad[4] += h.hit ? std::min(h.distance, missDistance_) : missDistance_;
             }
             if (hasRadiance)
                 accumulateIrradiance(irrTexels, irrDirs_.x.data(), irrDirs_.y.data(), irrDirs_.z.data(), d, radiance,
@@ -631,19 +636,21 @@ ProbeUpdateStats ProbeVolume::update(const Settings& s) {
         }
         // The radiance per direction: each texel blends at its own pace (alpha = its count of updates with a ray
         // through it), so a texel no ray crossed in the first updates does not stay at the first update's zero.
-        const float* rad = &newRad[slot * radTexels * 4];
+        const float* rad = &newRad[slot * radTexels * 5];
         const size_t radW = size_t(tilesPerRow_) * (radN_ + 2);
         for (int j = 0; j < radN_; ++j)
             for (int i = 0; i < radN_; ++i) {
-                const float* src = &rad[(size_t(j) * radN_ + i) * 4];
+                const float* src = &rad[(size_t(j) * radN_ + i) * 5];
                 if (!(src[3] > 0.0f)) continue;
-                float* dst = &radiance_[4 * ((size_t(row) * (radN_ + 2) + 1 + j) * radW + size_t(tile) * (radN_ + 2) + 1 + i)];
-                const float kt = dst[3], at = std::min(hysteresis, kt / (kt + kRampUpdates));
+                const size_t texel = (size_t(row) * (radN_ + 2) + 1 + j) * radW + size_t(tile) * (radN_ + 2) + 1 + i;
+                float* dst = &radiance_[4 * texel];
+                const float kt = radianceUpdates_[texel], at = std::min(hysteresis, kt / (kt + kRampUpdates));
                 for (int c = 0; c < 3; ++c) {
                     const float v = src[c] / src[3];
                     if (std::isfinite(v)) dst[c] = at * dst[c] + (1.0f - at) * v;
                 }
-                dst[3] = kt + 1.0f;
+                dst[3] = at * dst[3] + (1.0f - at) * (src[4] / src[3]);
+                radianceUpdates_[texel] = kt + 1.0f;
             }
         writeBorders(radiance_, radN_, 4, probe);
         writeBorders(irradiance_, irrN_, 4, probe);
@@ -757,7 +764,7 @@ void ProbeVolume::sceneChanged(bool restart) {
             const size_t radW = size_t(tilesPerRow_) * (radN_ + 2);
             for (int j = 0; j < radN_ + 2; ++j)  // its radiance texels' update counts: the next ray replaces each
                 for (int i = 0; i < radN_ + 2; ++i)
-                    radiance_[4 * ((size_t(row) * (radN_ + 2) + j) * radW + size_t(tile) * (radN_ + 2) + i) + 3] = 0.0f;
+                    radianceUpdates_[(size_t(row) * (radN_ + 2) + j) * radW + size_t(tile) * (radN_ + 2) + i] = 0.0f;
             dirtyRowLo_ = dirtyRowLo_ < dirtyRowHi_ ? std::min(dirtyRowLo_, row) : row;
             dirtyRowHi_ = std::max(dirtyRowHi_, row + 1);
             ++lastReplaced_;

@@ -20,10 +20,11 @@
 //   "Probe Data"        GL_RGBA32F, tilesPerRow x tileRows: xyz = the probe's offset from its grid position
 //                       (scene units), w = ProbeState as a float (1 = sampled; 0, -1 = not).
 //   "Probe Radiance"    GL_RGBA32F, (tilesPerRow * (R+2)) x (tileRows * (R+2)), R = probes.radiance_texels: the
-//                       radiance arriving at each probe per octahedral direction (rgb; a = how many updates had a
-//                       ray through the texel, which sets the texel's own blend), the same rays binned by the texel
-//                       they leave through; a 1-texel border per tile. The gather fills the hemisphere sectors the
-//                       screen did not cover with it (radiance(); shaders/probe_volume.glsl probeRadianceAt()).
+//                       radiance arriving at each probe per octahedral direction (rgb; a = the mean distance to the
+//                       surface those rays hit, unclamped, 2 x the grid's diagonal for a miss), the same rays binned
+//                       by the texel they leave through; a 1-texel border per tile. The gather fills with it the
+//                       directions whose surface the screen does not hold (radiance(); shaders/probe_volume.glsl
+//                       probeRadianceAt(), probeHitAt()).
 // RGBA16F also works for the irradiance (uploadTextures() sends floats, the driver converts) while it stays below
 // 65504; the depth needs RG32F (squared distances pass 65504 at 256 scene units).
 //
@@ -225,7 +226,7 @@ private:
     uint64_t seed_;
     int threads_;
     int irrN_, depthN_, radN_;
-    float normalBias_, viewBias_ = 0.0f, maxDistance_;
+    float normalBias_, viewBias_ = 0.0f, maxDistance_, missDistance_;  // depth moments clamp at maxDistance_; a radiance texel's miss counts missDistance_
     int tilesPerRow_ = 1, tileRows_ = 1;
     std::vector<ProbeState> state_;
     std::vector<glm::vec3> offset_;
@@ -241,6 +242,7 @@ private:
     size_t cursor_ = 0;  // round-robin position over the grid
     uint64_t updateIndex_ = 0;
     std::vector<float> irradiance_, depth_, data_, radiance_;
+    std::vector<float> radianceUpdates_;  // per radiance atlas texel: updates with a ray through it (its own blend)
     std::vector<float> sky_;  // the sky irradiance atlas (RGBA), empty without an environment
     // The map's share of the sky, importance-sampled (a small sun is caught by few of the probe rays): built when
     // the map or environment.intensity changes.

@@ -19,7 +19,7 @@ std::vector<ProbeTextureDesc> ProbeVolume::textures() const {
          "Per probe: xyz = offset from its grid position (scene units), w = state (1 active, 0 inside geometry, "
          "-1 unused)"},
         {"Probe Radiance", GL_RGBA32F, GL_RGBA, tilesPerRow_ * (radN_ + 2), tileRows_ * (radN_ + 2), 4, radiance_.data(),
-         "Radiance arriving at each probe per octahedral direction (rgb; a = updates with a ray through the texel), " +
+         "Radiance arriving at each probe per octahedral direction (rgb; a = mean distance to the surfaces its rays hit), " +
              std::to_string(radN_) + "x" + std::to_string(radN_) + " texels + border per tile"},
     };
 }
