@@ -19,7 +19,7 @@ struct BenchArgs {
     bool list = false;
     std::string suite = "standard";
     std::string hardScenes, scales = "1,0.001,1000";
-    int oneBounceSpp = 4096, oneBounceFrames = 60;
+    int oneBounceSpp = bench::HardOptions{}.oneBounceSpp, oneBounceFrames = bench::HardOptions{}.oneBounceFrames;
     bool noPath = false;
     SettingsOptions settings;
     bench::BenchOptions o;

@@ -161,7 +161,7 @@ vec3 probeIrradiance(vec3 X, vec3 n, vec3 V) { return probeAtlasWeighted(uProbeI
 vec3 probeIrradiance(vec3 X, vec3 n) { return probeIrradiance(X, n, vec3(0.0)); }
 
 // The 8 probes around X (surface normal n) and their normalised weights (probe -1: none), once per receiver, for
-// probeRadianceAt() and probeHitFrom() in as many directions as needed; meanPos = the probes' weighted mean position.
+// probeRadianceAt() in as many directions as needed; meanPos = the probes' weighted mean position.
 // False where no probe answers.
 bool probeSetAt(vec3 X, vec3 n, vec3 V, out int probes[8], out float weights[8], out vec3 meanPos) {
     meanPos = X;
@@ -207,9 +207,15 @@ vec3 probeIrradianceAt(int probes[8], float weights[8], vec3 n) {
 // probe's texel that d leaves through, unfiltered (the gather's directions change every frame, its filters do the
 // rest; a filtered lookup costs llvmpipe 4 texels); C++: ProbeVolume::radiance(). a = the probes' mean distance along
 // d to the surface that light comes from (2 x the grid's diagonal for a miss).
+// The radiance map's texel that direction d leaves through (as ProbeVolume's octTexel()).
+ivec2 probeRadianceTexel(vec3 d) {
+    int n = uProbeTexels.w;
+    return clamp(ivec2((probeOctEncode(d) * 0.5 + 0.5) * float(n)), ivec2(0), ivec2(n - 1));
+}
+
 vec4 probeRadianceDistanceAt(int probes[8], float weights[8], vec3 d) {
     int n = uProbeTexels.w;
-    ivec2 t = clamp(ivec2((probeOctEncode(d) * 0.5 + 0.5) * float(n)), ivec2(0), ivec2(n - 1));
+    ivec2 t = probeRadianceTexel(d);
     vec4 sum = vec4(0.0);
     for (int i = 0; i < 8; ++i)
         if (probes[i] >= 0) {
@@ -220,8 +226,3 @@ vec4 probeRadianceDistanceAt(int probes[8], float weights[8], vec3 d) {
 }
 
 vec3 probeRadianceAt(int probes[8], float weights[8], vec3 d) { return probeRadianceDistanceAt(probes, weights, d).rgb; }
-
-// Where the light of probeRadianceDistanceAt(..., d) comes from: the probes' mean hit meanPos + t d (meanPos from
-// probeSetAt()), a point on that surface near where the ray from the receiver meets it (the probes stand up to a
-// spacing away; moving the point onto the receiver's ray puts it off a surface met at a grazing angle).
-vec3 probeHitFrom(vec3 meanPos, vec3 d, float t) { return meanPos + t * d; }

@@ -184,9 +184,8 @@ bool screenHolds(vec3 Y, vec3 X, vec2 a, float rss, float r2, ivec2 size, bool t
     vec3 v = Y - X;
     float vv = dot(v, v);
     if (vv >= r2) return false;
-    vec4 c = uViewProj * vec4(Y, 1.0);
-    if (!(c.w > 0.0)) return false;
-    vec2 q = (c.xy / c.w * 0.5 + 0.5) * uViewport.xy;
+    if (uCameraPos.w > 0.5 && !(eyeZ(Y) > 0.0)) return false;  // behind a perspective camera
+    vec2 q = toPixel(Y);
     if (any(lessThan(q, vec2(0.0))) || any(greaterThanEqual(q, vec2(size)))) return false;
     float h = length(q - a);
     if (h > rss) return false;
@@ -369,14 +368,12 @@ void main() {
             uint h1 = fillHash(seed + uint(k) * 0x9e3779b9u), h2 = fillHash(h1);
             vec3 dir = sectorDirection(k, vec2(float(h1 >> 8), float(h2 >> 8)) * (1.0 / 16777216.0), ft, fb, nX);
             vec4 Lt = probeRadianceDistanceAt(fillProbes, fillWeights, dir);
-            // The distance is the mean over the texel's rays: along the texel's centre, not dir at its edge (a floor
-            // met at a grazing angle, 1/cos convex across the texel, put the point far under it).
-            ivec2 rt = clamp(ivec2((probeOctEncode(dir) * 0.5 + 0.5) * float(uProbeTexels.w)), ivec2(0),
-                             ivec2(uProbeTexels.w - 1));
-            vec3 texelDir = octDecode((vec2(rt) + 0.5) / float(uProbeTexels.w) * 2.0 - 1.0);
+            // Its light comes from the probes' mean hit: their mean position plus the texel's mean distance along
+            // the texel's centre (not along dir at its edge: a floor met at a grazing angle, 1/cos convex across the
+            // texel, put the point far under it; nor moved onto X's own ray, which puts it off such a floor).
+            vec3 texelDir = octDecode((vec2(probeRadianceTexel(dir)) + 0.5) / float(uProbeTexels.w) * 2.0 - 1.0);
             vec3 L = Lt.rgb;
-            if (screenHolds(probeHitFrom(fillCentre, texelDir, Lt.a), X, vec2(pix) + 0.5, rss, r2, size, twoLayers,
-                            holdTol)) {
+            if (screenHolds(fillCentre + Lt.a * texelDir, X, vec2(pix) + 0.5, rss, r2, size, twoLayers, holdTol)) {
                 uint h3 = fillHash(h2), h4 = fillHash(h3);
                 vec2 u = vec2(float(h3 >> 8), float(h4 >> 8)) * (1.0 / 16777216.0);
                 L = probeRadianceAt(fillProbes, fillWeights, sectorDirection(k, u, ft, fb, nX));

@@ -24,7 +24,7 @@
 //                       surface those rays hit, unclamped, 2 x the grid's diagonal for a miss), the same rays binned
 //                       by the texel they leave through; a 1-texel border per tile. The gather fills with it the
 //                       directions whose surface the screen does not hold (radiance(); shaders/probe_volume.glsl
-//                       probeRadianceAt(), probeHitAt()).
+//                       probeRadianceDistanceAt()).
 // RGBA16F also works for the irradiance (uploadTextures() sends floats, the driver converts) while it stays below
 // 65504; the depth needs RG32F (squared distances pass 65504 at 256 scene units).
 //
