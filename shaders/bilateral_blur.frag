@@ -1,6 +1,7 @@
 #version 450 core
 // One direction of the separable bilateral blur (G3D's reconstruction filter, technique.md 1.9): Gaussian taps
-// weighted by normal and plane-distance agreement with the centre, optionally monotonically decreasing.
+// weighted by normal and plane-distance agreement with the centre, optionally monotonically decreasing, read off a
+// weighted line fit so that a gradient cut by an edge keeps its value.
 #include "common.glsl"
 uniform sampler2D uGeometry;  // Radiosity Geometry: each grid pixel's world position and normal, from the gather
 uniform sampler2D uSource;
@@ -40,8 +41,12 @@ void main() {
     vec3 C = g.xyz;
     vec3 nC = unpackNormalCode(g.w);
     ivec2 size = ivec2(uRadiosityGrid.yz);
-    vec3 sum = centre * uKernel[0];
-    float total = uKernel[0];
+    // A weighted line fit along the axis (offset t in taps), read at the centre: where both sides count it is the
+    // weighted mean; where an edge or the screen border cuts one side off, the fitted slope keeps a linear gradient's
+    // value (a one-sided mean took the brighter interior's light into every concave corner: one bounce 10-100 % too
+    // bright in bands along the sun patch room's edges) while the taps still average the noise.
+    float s0 = uKernel[0], s1 = 0.0, s2 = 0.0;
+    vec3 sv = centre * uKernel[0], stv = vec3(0.0), lo = centre, hi = centre;
     for (int side = -1; side <= 1; side += 2) {
         float lastB = 1.0;
         for (int r = 1; r <= MAX_BLUR_RADIUS; ++r) {
@@ -50,10 +55,24 @@ void main() {
             if (any(lessThan(tp, ivec2(0))) || any(greaterThanEqual(tp, size))) break;
             float b = bilateral(C, nC, tp);
             if (uMonotonic != 0) { b = min(b, lastB); lastB = b; }
-            float w = (0.3 + uKernel[r]) * b;
-            sum += texelFetch(uSource, tp, 0).rgb * w;
-            total += w;
+            float w = (0.3 + uKernel[r]) * b, t = float(side * r);
+            vec3 v = texelFetch(uSource, tp, 0).rgb;
+            s0 += w;
+            s1 += w * t;
+            s2 += w * t * t;
+            sv += w * v;
+            stv += (w * t) * v;
+            if (w > 0.0) {
+                lo = min(lo, v);
+                hi = max(hi, v);
+            }
         }
     }
-    oValue = sanitizeR11G11B10(sum / total, gl_FragCoord.xy);  // total >= kernel[0] > 0: the centre always counts
+    // s0 >= kernel[0] > 0: the centre always counts; det = 0 when no tap but the centre's does.
+    float det = s0 * s2 - s1 * s1;
+    vec3 slope = det > 1e-6 * s0 * s2 ? (s0 * stv - s1 * sv) / det : vec3(0.0);
+    // Within the values it was fitted to (the centre's among them, so a line keeps its value): noise read off a
+    // one-sided fit's end must not overshoot them (a dark speck where a moved camera's new pixels meet reused ones).
+    vec3 value = clamp((sv - slope * s1) / s0, lo, hi);
+    oValue = sanitizeR11G11B10(value, gl_FragCoord.xy);
 }

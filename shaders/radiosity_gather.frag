@@ -241,8 +241,17 @@ void main() {
     ivec2 block = ivec2(gl_FragCoord.xy) >> 2;  // llvmpipe shades 4x4 blocks: a block gathers whole or not at all
     int slot = uInterleave == 2 ? ((block.x + block.y) & 1) : ((block.x & 1) | ((block.y & 1) << 1));
     if (slot != uInterleaveSlot) {
+        // A block where any history is rejected gathers anyway, so it gathers all its pixels (it costs llvmpipe
+        // nothing more): next to a disocclusion a history that passes the test may still be another surface's
+        // (across an edge-on wall's zero thickness, where the positions agree). The corners stand for the block.
         vec2 prevUV;
-        if (reprojectionWeight(pix, prevUV) >= 0.999) {
+        ivec2 b0 = block << 2;
+        float w = min(reprojectionWeight(pix, prevUV),
+                      min(min(reprojectionWeight(screenPixelOfRadiosity(b0), prevUV),
+                              reprojectionWeight(screenPixelOfRadiosity(b0 + ivec2(3, 0)), prevUV)),
+                          min(reprojectionWeight(screenPixelOfRadiosity(b0 + ivec2(0, 3)), prevUV),
+                              reprojectionWeight(screenPixelOfRadiosity(b0 + ivec2(3, 3)), prevUV))));
+        if (w >= 0.999) {
             reuse = true;
             taps = 0;
             sectors = 0;
