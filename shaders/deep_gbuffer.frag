@@ -52,6 +52,7 @@ void main() {
 #ifdef MASKED
     if (base.a < uAlphaCutoff) discard;
 #endif
+#ifndef LAYER1_ONLY
     if (gl_Layer == 1) {
         if (uPeel != 0) {
             float d0 = texelFetch(uPeelDepth, ivec2(gl_FragCoord.xy), 0).r;
@@ -73,6 +74,7 @@ void main() {
             }
         }
     }
+#endif
     vec3 n = gs.normal;
     float len = length(n);
     n = (len > 1e-20 && !isnan(len)) ? n / len : normalize(cross(dFdx(gs.world), dFdy(gs.world)));

@@ -63,15 +63,22 @@ void DeepGBufferPass::drawScene(FrameContext& ctx, int firstLayer, int layerCoun
         if (ctx.config.normalMaps) defs.push_back("NORMAL_MAPS");
         if (ctx.config.objectIds) defs.push_back("OBJECT_IDS");
         if (ctx.config.objectMotion) defs.push_back("OBJECT_MOTION");
-        Program& prog = program_.get(ctx.shaders, {"deep_gbuffer.vert", "deep_gbuffer.geom", "deep_gbuffer.frag", "", defs});
-        glUseProgram(prog.id());
-        prog.firstLayer.set(firstLayer);
-        prog.layerCount.set(layerCount);
-        prog.minSeparation.set(g.minSeparation);
-        prog.peel.set(peel);
-        prog.diffuseOnly.set(ctx.settings.diffuseOnly);
-        ctx.bindSamplers(prog, {{"uPeelDepth", peelDepth}});
-        ctx.scene.draw(prog.id(), masked, true);
+        // Layer 1 alone: no discard in the shader, so llvmpipe tests depth before shading (early z) and shades
+        // each pixel's front surface only, not every surface behind it.
+        if (firstLayer == 0 && layerCount == 1) defs.push_back("LAYER1_ONLY");
+        ctx.scene.draw([&](unsigned textures) {
+            std::vector<std::string> variant = defs;
+            for (auto& d : SceneGpu::materialTextureDefines(textures)) variant.push_back(d);
+            Program& prog = program_.get(ctx.shaders, {"deep_gbuffer.vert", "deep_gbuffer.geom", "deep_gbuffer.frag", "", variant});
+            glUseProgram(prog.id());
+            prog.firstLayer.set(firstLayer);
+            prog.layerCount.set(layerCount);
+            prog.minSeparation.set(g.minSeparation);
+            prog.peel.set(peel);
+            prog.diffuseOnly.set(ctx.settings.diffuseOnly);
+            ctx.bindSamplers(prog, {{"uPeelDepth", peelDepth}});
+            return prog.id();
+        }, masked, true);
     }
 }
 

@@ -21,8 +21,8 @@ private:
         }
         gl::Uniform<int> firstLayer{*this, "uFirstLayer"};
         gl::Uniform<int> layerCount{*this, "uLayerCount"};
-        gl::Uniform<float> minSeparation{*this, "uMinSeparation"};
-        gl::Uniform<bool> peel{*this, "uPeel"};
+        gl::OptionalUniform<float> minSeparation{*this, "uMinSeparation"};  // not in LAYER1_ONLY
+        gl::OptionalUniform<bool> peel{*this, "uPeel"};
         gl::Uniform<bool> diffuseOnly{*this, "uDiffuseOnly"};
     };
     void writeMaterialTextures(const PipelineConfig& c, PassTable& t) const;

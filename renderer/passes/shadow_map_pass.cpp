@@ -44,13 +44,17 @@ void ShadowMapPass::execute(FrameContext& ctx) {
             std::vector<std::string> defs;
             if (masked) defs.push_back("MASKED");
             if (caster.cube) defs.push_back("CUBE");
-            Program& prog = program_.get(ctx.shaders, {"shadow_map.vert", "", "shadow_map.frag", "", defs});
-            glUseProgram(prog.id());
-            prog.lightViewProj.set(caster.viewProj);
-            prog.lightPos.set(caster.position);
-            prog.shadowFar.set(caster.far);
-            ctx.bindSamplers(prog);
-            ctx.scene.draw(prog.id(), masked, false);
+            ctx.scene.draw([&](unsigned textures) {
+                std::vector<std::string> variant = defs;
+                if (masked && (textures & SceneGpu::kBaseTex)) variant.push_back("BASE_TEX");  // only the alpha test reads it
+                Program& prog = program_.get(ctx.shaders, {"shadow_map.vert", "", "shadow_map.frag", "", variant});
+                glUseProgram(prog.id());
+                prog.lightViewProj.set(caster.viewProj);
+                prog.lightPos.set(caster.position);
+                prog.shadowFar.set(caster.far);
+                ctx.bindSamplers(prog);
+                return prog.id();
+            }, masked, false);
         }
     }
 }

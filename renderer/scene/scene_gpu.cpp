@@ -87,36 +87,50 @@ SceneGpu::SceneGpu(const Scene& scene) : materials_(scene.materials) {
     }
 }
 
-void SceneGpu::draw(GLuint program, bool masked, bool cullBackFaces) const {
+std::vector<std::string> SceneGpu::materialTextureDefines(unsigned textures) {
+    std::vector<std::string> defs;
+    if (textures & kBaseTex) defs.push_back("BASE_TEX");
+    if (textures & kEmissiveTex) defs.push_back("EMISSIVE_TEX");
+    if (textures & kMetalRoughTex) defs.push_back("METAL_ROUGH_TEX");
+    if (textures & kNormalTex) defs.push_back("NORMAL_TEX");
+    if (textures & kOcclusionTex) defs.push_back("OCCLUSION_TEX");
+    return defs;
+}
+
+void SceneGpu::draw(const ProgramFor& programFor, bool masked, bool cullBackFaces) const {
     glBindVertexArray(vao_.id());
-    const GLint locBase = glGetUniformLocation(program, "uBaseColor");
-    const GLint locEmissive = glGetUniformLocation(program, "uEmissive");
-    const GLint locHasBase = glGetUniformLocation(program, "uHasBaseTex");
-    const GLint locHasEm = glGetUniformLocation(program, "uHasEmissiveTex");
-    const GLint locCutoff = glGetUniformLocation(program, "uAlphaCutoff");
-    const GLint locPbr = glGetUniformLocation(program, "uMetalRoughF0");
-    const GLint locNormalOcc = glGetUniformLocation(program, "uNormalScaleOcclusion");
-    const GLint locHasPbr = glGetUniformLocation(program, "uHasPbrTex");
+    GLuint program = 0;
+    unsigned programTextures = ~0u;
+    GLint locBase = -1, locEmissive = -1, locCutoff = -1, locPbr = -1, locNormalOcc = -1;
     static const Material kDefault{};
     for (const auto& b : batches_) {
         const Material& m = (b.material >= 0 && b.material < (int)materials_.size()) ? materials_[b.material] : kDefault;
         if (m.masked() != masked) continue;
         auto texOf = [&](int i) -> GLuint { return (i >= 0 && i < (int)textures_.size()) ? textures_[i].id() : 0; };
         const GLuint baseTex = texOf(m.baseColorTexture), emTex = texOf(m.emissiveTexture);
+        // Metallic-roughness, normal and occlusion (material.glsl): units 2..4.
+        const GLuint mrTex = texOf(m.metallicRoughnessTexture), nTex = texOf(m.normalTexture), oTex = texOf(m.occlusionTexture);
+        const unsigned textures = (baseTex ? kBaseTex : 0u) | (emTex ? kEmissiveTex : 0u) | (mrTex ? kMetalRoughTex : 0u) |
+                                  (nTex ? kNormalTex : 0u) | (oTex ? kOcclusionTex : 0u);
+        if (textures != programTextures) {
+            programTextures = textures;
+            program = programFor(textures);
+            // A variant may leave a uniform out (-1 locations are ignored by GL).
+            locBase = glGetUniformLocation(program, "uBaseColor");
+            locEmissive = glGetUniformLocation(program, "uEmissive");
+            locCutoff = glGetUniformLocation(program, "uAlphaCutoff");
+            locPbr = glGetUniformLocation(program, "uMetalRoughF0");
+            locNormalOcc = glGetUniformLocation(program, "uNormalScaleOcclusion");
+        }
         glProgramUniform4fv(program, locBase, 1, &m.baseColorFactor.x);
         glProgramUniform3fv(program, locEmissive, 1, &m.emissiveFactor.x);
-        glProgramUniform1i(program, locHasBase, baseTex != 0);
-        glProgramUniform1i(program, locHasEm, emTex != 0);
         glProgramUniform1f(program, locCutoff, m.alphaCutoff);
         glBindTextureUnit(0, baseTex);
         glBindTextureUnit(1, emTex);
-        // Metallic-roughness, normal and occlusion (material.glsl): units 2..4, -1 locations ignored by GL.
-        const GLuint mrTex = texOf(m.metallicRoughnessTexture), nTex = texOf(m.normalTexture), oTex = texOf(m.occlusionTexture);
         const glm::vec4 pbr(m.metallic, m.roughness, m.dielectricF0, m.specular() ? 1.0f : 0.0f);
         const glm::vec2 normalOcc(m.normalScale, m.occlusionStrength);
         glProgramUniform4fv(program, locPbr, 1, &pbr.x);
         glProgramUniform2fv(program, locNormalOcc, 1, &normalOcc.x);
-        glProgramUniform3i(program, locHasPbr, mrTex != 0, nTex != 0, oTex != 0);
         glBindTextureUnit(2, mrTex);
         glBindTextureUnit(3, nTex);
         glBindTextureUnit(4, oTex);

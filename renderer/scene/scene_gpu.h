@@ -5,6 +5,8 @@
 #include "renderer/gl/gl.h"
 #include "renderer/scene/scene.h"
 
+#include <functional>
+#include <string>
 #include <vector>
 
 namespace deepgi {
@@ -18,10 +20,20 @@ public:
     SceneGpu(const SceneGpu&) = delete;
     SceneGpu& operator=(const SceneGpu&) = delete;
 
-    // Draws the batches with the given alpha mode (masked or opaque) using `program`, setting its material
-    // uniforms (material.glsl) and binding textures. Back faces are culled except for double-sided materials
-    // when cullBackFaces is set.
-    void draw(GLuint program, bool masked, bool cullBackFaces) const;
+    // Which of a material's textures are bound (material.glsl's BASE_TEX ... OCCLUSION_TEX): each is a shader
+    // variant, since llvmpipe samples a texture under `if (uniform)` whatever the uniform says (every draw read
+    // all five units, bound or not).
+    enum MaterialTexture : unsigned { kBaseTex = 1, kEmissiveTex = 2, kMetalRoughTex = 4, kNormalTex = 8, kOcclusionTex = 16 };
+    // The defines of a mask of MaterialTexture bits.
+    static std::vector<std::string> materialTextureDefines(unsigned textures);
+    // Returns the program to draw the batches whose materials have these textures, in use and with its own
+    // uniforms set; called once per change of the mask.
+    using ProgramFor = std::function<GLuint(unsigned textures)>;
+
+    // Draws the batches with the given alpha mode (masked or opaque) with the program programFor() gives for
+    // each material's textures, setting its material uniforms (material.glsl) and binding textures. Back faces
+    // are culled except for double-sided materials when cullBackFaces is set.
+    void draw(const ProgramFor& programFor, bool masked, bool cullBackFaces) const;
     bool hasMasked() const { return hasMasked_; }
     bool hasOpaque() const { return hasOpaque_; }
     bool empty() const { return batches_.empty(); }
