@@ -9,7 +9,7 @@ namespace {
 std::vector<std::string> settingKeysOf(const std::string& pass) {
     static const std::vector<std::pair<std::string, std::string>> prefix = {
         {"Shadow maps", "light."}, {"Probe update", "probes."}, {"Deep G-buffer", "gbuffer."}, {"Input radiance", "radiosity.bounce_damping"},
-        {"Radiosity gather", "radiosity."}, {"Ambient occlusion", "ao."}, {"Bilateral blur", "blur."},
+        {"Gather select", "radiosity.interleave"}, {"Radiosity gather", "radiosity."}, {"Ambient occlusion", "ao."}, {"Bilateral blur", "blur."},
         {"Temporal blend", "temporal."}, {"Reproject radiance", "temporal."}, {"Composite", "composite."}};
     std::vector<std::string> keys;
     for (const auto& [name, p] : prefix)

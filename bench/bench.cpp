@@ -69,7 +69,7 @@ OIIO::ImageBuf heatMap(const FloatImage& a, const FloatImage& ref) {
     return draw::heat(e, a.width, a.height);
 }
 
-const char* kGiPasses[] = {"Reproject radiance", "Input radiance", "Radiosity gather", "Bilateral blur", "Temporal blend"};
+const char* kGiPasses[] = {"Reproject radiance", "Input radiance", "Gather select", "Radiosity gather", "Bilateral blur", "Temporal blend"};
 
 }  // namespace
 
@@ -333,7 +333,7 @@ BenchResult runBench(const BenchOptions& o) {
                 if (ao->passMs.count(p)) gi += ao->passMs.at(p);
             const double a = ao->passMs.at("Ambient occlusion");
             const double gather = ao->passMs.count("Radiosity gather") ? ao->passMs.at("Radiosity gather") : 0.0;
-            R.push_back(vd.label + ": GI passes (reproject, input radiance + mips, gather, blur, temporal) " + fmt(gi, 2) +
+            R.push_back(vd.label + ": GI passes (reproject, input radiance + mips, gather select, gather, blur, temporal) " + fmt(gi, 2) +
                         " ms vs AO pass with the same taps " + fmt(a, 2) + " ms: ratio " + fmt(gi / a, 2) +
                         " (target <= 1.50: " + (gi / a <= 1.5 ? "met" : "not met") + "); gather alone / AO = " + fmt(gather / a, 2));
         }

@@ -9,6 +9,7 @@
 #include "renderer/passes/environment_pass.h"
 #include "renderer/passes/input_radiance_pass.h"
 #include "renderer/passes/pass_graph.h"
+#include "renderer/passes/gather_select_pass.h"
 #include "renderer/passes/radiosity_gather_pass.h"
 #include "renderer/passes/reproject_radiance_pass.h"
 #include "renderer/passes/probe_update_pass.h"
@@ -69,6 +70,7 @@ std::vector<std::unique_ptr<RenderPass>> Renderer::standardPasses() {
     p.push_back(std::make_unique<DeepGBufferPass>());
     p.push_back(std::make_unique<ReprojectRadiancePass>());
     p.push_back(std::make_unique<InputRadiancePass>());
+    p.push_back(std::make_unique<GatherSelectPass>());
     p.push_back(std::make_unique<RadiosityGatherPass>());
     p.push_back(std::make_unique<AmbientOcclusionPass>());
     p.push_back(std::make_unique<BilateralBlurPass>());

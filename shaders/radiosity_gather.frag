@@ -10,16 +10,9 @@
 // Gather Coverage (the confidence where the screen has no data); the probes fill the rest, per hemisphere sector
 // (probes.directional_fill) or as the uncovered share of their irradiance.
 #include "common.glsl"
-#ifdef DEEPGI_INTERLEAVE
-// radiosity.interleave: 1 in uInterleave blocks gathers this frame; the others reuse last frame's filtered irradiance
-// where its reprojection is fully trusted (the temporal filter's own test). reprojection.glsl declares uDepth too.
-#include "reprojection.glsl"
-uniform sampler2D uReprojected;
-uniform int uInterleave;      // 2 or 4
-uniform int uInterleaveSlot;  // this frame's blocks
-#else
+// With the interleaved gather (radiosity.interleave) it runs only where Gather Select chose to (an early depth test
+// against Gather Mask); that pass wrote the other pixels' irradiance and every pixel's Radiosity Geometry.
 uniform sampler2DArray uDepth;
-#endif
 uniform sampler2DArray uNormal;
 uniform sampler2DArray uRadiance;
 uniform int uNumSamples;
@@ -33,7 +26,6 @@ uniform int uUseLayer2;
 uniform float uTime;  // varies the pattern per frame when temporally varying taps
 layout(location = 0) out vec3 oIrradiance;
 layout(location = 1) out float oCoverage;
-layout(location = 2) out vec4 oGeometry;  // Radiosity Geometry: X, packNormalCode(its Normal texel); sky: w = -1
 uniform float uThickness;      // assumed thickness behind a layer-1 surface where layer 2 does not bound it
 const int MAX_VISIBILITY_STEPS = 16;  // radiosity.visibility_steps
 uniform int uVisibilitySteps;  // march steps per tap (0 = no visibility test)
@@ -208,11 +200,9 @@ bool screenHolds(vec3 Y, vec3 X, vec2 a, float rss, float r2, ivec2 size, bool t
 void main() {
     ivec2 pix = screenPixelOfRadiosity(ivec2(gl_FragCoord.xy));  // taps and patches in screen pixels at any grid
     float d = texelFetch(uDepth, ivec3(pix, 0), 0).r;
-    if (isSky(d)) { oIrradiance = vec3(0.0); oCoverage = 0.0; oGeometry = vec4(0.0, 0.0, 0.0, -1.0); return; }
+    if (isSky(d)) { oIrradiance = vec3(0.0); oCoverage = 0.0; return; }
     vec3 X = worldFromDepth(vec2(pix) + 0.5, d, uInvViewProj);
-    vec2 nCode = texelFetch(uNormal, ivec3(pix, 0), 0).rg;
-    vec3 nX = octDecode(nCode);
-    oGeometry = vec4(X, packNormalCode(nCode));
+    vec3 nX = octDecode(texelFetch(uNormal, ivec3(pix, 0), 0).rg);
     float z = eyeDepthCurrent(d);
     float rss = uCameraPos.w > 0.5 ? uClip.z * uRadius / max(z, 1e-30) : uClip.z * uRadius;
     rss = min(rss, 4.0 * max(uViewport.x, uViewport.y));  // beyond the screen no tap finds data
@@ -231,33 +221,7 @@ void main() {
     vec3 V = viewDirection(X);  // the probes' view bias: towards the camera, the surface's visible side
 #endif
     vec3 sum = vec3(0.0);
-    float covered = 0.0;  // stays 0 where the interleaved gather reuses the history (Gather Coverage shows so)
-    // The loops' lengths, 0 where an interleaved block reuses the history. llvmpipe runs both sides of every if and a
-    // loop's first pass (masked), but leaves a loop once all its lanes are done: a reusing block pays one tap and one
-    // sector, about a sixth of a gathered block (gather 0.58 x at interleave 2, 0.39 x at 4).
-    int taps = uNumSamples, sectors = 8;  // sectors: the directional fill's FILL_SECTORS
-    bool reuse = false;
-#ifdef DEEPGI_INTERLEAVE
-    ivec2 block = ivec2(gl_FragCoord.xy) >> 2;  // llvmpipe shades 4x4 blocks: a block gathers whole or not at all
-    int slot = uInterleave == 2 ? ((block.x + block.y) & 1) : ((block.x & 1) | ((block.y & 1) << 1));
-    if (slot != uInterleaveSlot) {
-        // A block where any history is rejected gathers anyway, so it gathers all its pixels (it costs llvmpipe
-        // nothing more): next to a disocclusion a history that passes the test may still be another surface's
-        // (across an edge-on wall's zero thickness, where the positions agree). The corners stand for the block.
-        vec2 prevUV;
-        ivec2 b0 = block << 2;
-        float w = min(reprojectionWeight(pix, prevUV),
-                      min(min(reprojectionWeight(screenPixelOfRadiosity(b0), prevUV),
-                              reprojectionWeight(screenPixelOfRadiosity(b0 + ivec2(3, 0)), prevUV)),
-                          min(reprojectionWeight(screenPixelOfRadiosity(b0 + ivec2(0, 3)), prevUV),
-                              reprojectionWeight(screenPixelOfRadiosity(b0 + ivec2(3, 3)), prevUV))));
-        if (w >= 0.999) {
-            reuse = true;
-            taps = 0;
-            sectors = 0;
-        }
-    }
-#endif
+    float covered = 0.0;
 #ifdef DEEPGI_PROBE_DIRECTIONAL_FILL
     // Per sector: the covered cosine-weighted share and the taps' irradiance. The frame turns with the spiral.
     // As vec4 pairs (sectors 0-3, 4-7) added to through one-hot masks: llvmpipe turns an array indexed per pixel
@@ -272,7 +236,7 @@ void main() {
     // Tap radii are uniform in [0, rss]: a tap at h stands for 2*pi*h*rss/N pixels^2 of the disk.
     float areaPerH = 2.0 * PI * rss / float(uNumSamples);
     for (int i = 0; i < MAX_SPIRAL_TAPS; ++i) {
-        if (i >= taps) break;
+        if (i >= uNumSamples) break;
         float h;
         vec2 dir = spiralTap(i, uNumSamples, uSpiralTurns, phi, jitter, rss, h);
         ivec2 Yp = pix + ivec2(h * dir);
@@ -371,7 +335,6 @@ void main() {
     // 6 % dark at 0.3). Where the radiance is the same everywhere (the closed furnace) the choice changes nothing.
     float holdTol = 0.5 * min(uProbeSpacing.x, min(uProbeSpacing.y, uProbeSpacing.z));
     for (int k = 0; k < FILL_SECTORS; ++k) {
-        if (k >= sectors) break;
         float share = k < 4 ? shareLo[k] : shareHi[k - 4];
         if (fill && share < SECTOR_SHARE) {
             uint h1 = fillHash(seed + uint(k) * 0x9e3779b9u), h2 = fillHash(h1);
@@ -399,12 +362,6 @@ void main() {
 #if defined(DEEPGI_PROBES) && !defined(DEEPGI_PROBE_DIRECTIONAL_FILL)
     // The directions the screen did not cover (off screen, beyond the radius, hidden) take the probes' light.
     sum += (1.0 - covered) * probeIrradiance(X, nX, V);
-#endif
-#ifdef DEEPGI_INTERLEAVE
-    if (reuse) {
-        sum = texelFetch(uReprojected, ivec2(gl_FragCoord.xy), 0).rgb;
-        covered = 0.0;
-    }
 #endif
     oIrradiance = sanitizeR11G11B10(sum, gl_FragCoord.xy);
     oCoverage = covered;

@@ -347,12 +347,16 @@ TEST_F(GLTest, GraphListsThePipelineInOrder) {
     std::vector<std::string> order;
     for (const auto& n : g) order.push_back(n.name + (n.enabled ? "" : " (off)"));
     EXPECT_EQ(order, (std::vector<std::string>{"Shadow maps", "Probe update", "Environment (off)", "Deep G-buffer", "Reproject radiance", "Input radiance",
-                                               "Radiosity gather", "Ambient occlusion (off)", "Bilateral blur",
+                                               "Gather select", "Radiosity gather", "Ambient occlusion (off)", "Bilateral blur",
                                                "Temporal blend", "Composite"}));
-    const auto& gather = g[6];
-    // On llvmpipe radiosity.interleave=auto interleaves: the reused blocks read the reprojected history.
-    EXPECT_EQ(gather.reads, (std::vector<std::string>{"Depth", "Normal", "Last Depth", "Reprojected Radiance", "Input Radiance", "Probe Irradiance", "Probe Depth", "Probe Data", "Probe Radiance"}));
-    EXPECT_EQ(gather.writes, (std::vector<std::string>{"Output Radiance", "Gather Coverage", "Radiosity Geometry"}));
+    // On llvmpipe radiosity.interleave=auto interleaves: the selection gives the reused blocks the reprojected
+    // history and masks them out of the gather, which updates the rest.
+    const auto& select = g[6];
+    EXPECT_EQ(select.reads, (std::vector<std::string>{"Depth", "Normal", "History Weight", "Reprojected Radiance"}));
+    EXPECT_EQ(select.writes, (std::vector<std::string>{"Gather Mask", "Output Radiance", "Gather Coverage", "Radiosity Geometry"}));
+    const auto& gather = g[7];
+    EXPECT_EQ(gather.reads, (std::vector<std::string>{"Depth", "Normal", "Input Radiance", "Probe Irradiance", "Probe Depth", "Probe Data", "Probe Radiance", "Output Radiance", "Gather Coverage", "Gather Mask"}));
+    EXPECT_EQ(gather.writes, (std::vector<std::string>{"Output Radiance", "Gather Coverage"}));
     // Units are distinct within a pass and never the material textures' 0 and 1.
     for (const auto& n : g) {
         std::vector<int> units;
@@ -364,8 +368,8 @@ TEST_F(GLTest, GraphListsThePipelineInOrder) {
     applyAssignment(s, "temporal.order=temporal_first");
     r->prepare(s);
     const auto g2 = r->graph();
-    EXPECT_EQ(g2[8].name, "Temporal blend");
-    EXPECT_EQ(g2[9].name, "Bilateral blur");
+    EXPECT_EQ(g2[9].name, "Temporal blend");
+    EXPECT_EQ(g2[10].name, "Bilateral blur");
 }
 
 // `deepgi graph`: the default scene's pipeline in order with its textures, temporal_first reorders, --dot writes a
@@ -385,7 +389,7 @@ TEST(GraphCli, PrintsThePipelineAndWritesGraphviz) {
     const std::string dot = ::testing::TempDir() + "deepgi_graph_" + std::to_string(::getpid()) + ".dot";
     std::string out;
     ASSERT_EQ(run("--size 64x48 --dot '" + dot + "'", out), 0) << out;
-    for (const char* part : {" 1. Shadow maps", " 2. Probe update", " 3. Deep G-buffer", " 6. Radiosity gather", " 9. Composite",
+    for (const char* part : {" 1. Shadow maps", " 2. Probe update", " 3. Deep G-buffer", " 6. Gather select", " 7. Radiosity gather", "10. Composite",
                              "Ambient occlusion (disabled", "Radiosity Scratch", "R11F_G11F_B10F  64x48 (screen)", "uRadiance@"})
         EXPECT_TRUE(contains(out, part)) << part << "\n" << out;
     EXPECT_LT(out.find("Bilateral blur"), out.find("Temporal blend"));

@@ -351,9 +351,10 @@ TEST_F(GLTest, TemporalBlendFollowsFormula) {
     s.radiosityResolution = RadiosityResolution::Full;  // compared with Depth 1 pixel by pixel
     s.interleave = RadiosityInterleave::Off;  // the plain blend (the interleaved one: the test below)
     expectTemporalBlend(r, s, 0.75f, 0.02f);
-    // Without history the current value passes through.
+    // Without history the current value passes through (the reprojection pass rejects every pixel's history).
     const glm::vec3 cur(1.0f, 2.0f, 4.0f);
     r.resetHistory();
+    r.executePass("Reproject radiance", s);
     fillTexture(r.textures().id("Output Radiance"), cur);
     r.executePass("Temporal blend", s);
     FloatImage fresh = r.readLayer("Output Radiance");

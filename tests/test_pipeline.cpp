@@ -42,7 +42,7 @@ TEST_F(GLTest, GpuTimerQueriesReportEveryPass) {
     renderer->render(s);
     renderer->render(s);
     const auto& t = renderer->timings();
-    ASSERT_EQ(t.size(), 9u);  // all nine passes but AO are enabled by default
+    ASSERT_EQ(t.size(), 10u);  // all ten passes but AO are enabled by default
     EXPECT_EQ(t[1].name, "Probe update");
     EXPECT_EQ(t[2].name, "Deep G-buffer");
     for (const auto& p : t) {

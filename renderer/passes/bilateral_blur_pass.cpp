@@ -19,7 +19,7 @@ std::vector<float> blurKernel(int radius) {
 
 void BilateralBlurPass::table(const PipelineConfig& c, PassTable& t) const {
     t.read("Radiosity Geometry", "uGeometry");
-    t.update("Output Radiance", "uSource").after(c.temporalFirst ? "Temporal blend" : "");
+    t.update("Output Radiance", "uSource").after(c.temporalFirst && c.temporal ? "Temporal blend" : "Radiosity gather");
     t.scratch(radiosityScratch(c), "uSource");  // the vertical step reads the horizontal result
 }
 

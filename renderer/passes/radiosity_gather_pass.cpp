@@ -27,27 +27,14 @@ int spiralTurns(int n) {
 void RadiosityGatherPass::table(const PipelineConfig& c, PassTable& t) const {
     t.read("Depth", "uDepth");
     t.read("Normal", "uNormal");
-    if (c.gatherInterleave > 1) {  // the blocks not gathered this frame take the reprojected history
-        t.read("Last Depth", "uLastDepthTex");  // reprojection.glsl's inputs besides Depth (readReprojectionInputs)
-        if (c.objectMotion) t.read("Motion", "uMotion");
-        t.read("Reprojected Radiance", "uReprojected");
-    }
     t.read("Input Radiance", "uRadiance");
     if (c.probes) readProbeVolume(t);  // the part of the hemisphere the screen does not cover
     if (c.probeDirectionalFill) readProbeRadiance(t);  // per sector
-    t.write({"Output Radiance", {"Output Radiance"}, GL_R11F_G11F_B10F, GL_TEXTURE_2D, c.radiositySize(), 1,
-             MemoryGroup::Radiosity, Visualize::Radiance,
-             "Indirect irradiance at layer 1: raw gather (the probes fill what the screen did not cover), then blurred "
-             "and temporally blended in place"});
-    t.write({"Gather Coverage", {"Gather Coverage"}, GL_R8, GL_TEXTURE_2D, c.radiositySize(), 1, MemoryGroup::Extra,
-             Visualize::Color,
-             "Share of the cosine-weighted hemisphere that the screen's visible surfaces covered in the gather (1 = all "
-             "light came from the screen; the probes give the rest); 0 on the blocks that reused the history (radiosity.interleave)"});
-    // Extra: a cache of what Depth and Normal hold, not part of the paper's radiosity layout.
-    t.write({"Radiosity Geometry", {"Radiosity Geometry"}, GL_RGBA32F, GL_TEXTURE_2D, c.radiositySize(), 1,
-             MemoryGroup::Extra, Visualize::Color,
-             "Each radiosity-grid pixel's receiver as the gather saw it: world position (xyz) and its Normal texel's two "
-             "bytes (w; -1 = sky), so the blur and the upsample fetch one texel instead of rebuilding it from depth"});
+    // Gather Select wrote them whole; this pass overwrites the pixels that gather (with the interleaved gather,
+    // those where Gather Mask is 0: an early depth test, so the others cost llvmpipe nothing).
+    t.update("Output Radiance");
+    t.update("Gather Coverage");
+    if (c.gatherInterleave > 1) t.read("Gather Mask");
 }
 
 void RadiosityGatherPass::execute(FrameContext& ctx) {
@@ -57,11 +44,6 @@ void RadiosityGatherPass::execute(FrameContext& ctx) {
     if (!ctx.config.layer2) defines.push_back("DEEPGI_SINGLE_LAYER");
     if (ctx.config.probes) defines.push_back("DEEPGI_PROBES");
     if (ctx.config.probeDirectionalFill) defines.push_back("DEEPGI_PROBE_DIRECTIONAL_FILL");
-    const int interleave = ctx.config.gatherInterleave;
-    if (interleave > 1) {
-        defines.push_back("DEEPGI_INTERLEAVE");
-        for (const std::string& d : reprojectionDefines(ctx.config)) defines.push_back(d);
-    }
     Program& prog = program_.get(ctx.shaders, {"fullscreen.vert", "", "radiosity_gather.frag", "", defines});
     const int levels = ctx.entry("Input Radiance").decl.levels;
     const int maxMip = std::max(0, std::min(5, levels - 1));
@@ -76,20 +58,32 @@ void RadiosityGatherPass::execute(FrameContext& ctx) {
     prog.time.set(s.varyTaps ? ctx.time : 0.0f);
     prog.thickness.set(ctx.settings.minSeparation);
     prog.visibilitySteps.set(s.visibilitySteps);
-    if (interleave > 1) {
-        // The blocks' turn: 2 = a checkerboard alternating; 4 = one corner of every 2x2 blocks, the diagonal ones
-        // first (slots 0, 3, 1, 2), so that consecutive frames gather far apart.
-        static const int kFourOrder[4] = {0, 3, 1, 2};
-        prog.reprojection.set(ctx);
-        prog.interleave.set(interleave);
-        prog.interleaveSlot.set(interleave == 4 ? kFourOrder[ctx.frameIndex % 4] : int(ctx.frameIndex % 2));
-    }
     if (ctx.config.probes) bindProbeUniforms(ctx);
     ctx.bindSamplers(prog);
-    GLuint fbo = ctx.fbos.get({{GL_COLOR_ATTACHMENT0, ctx.texture("Output Radiance")},
-                               {GL_COLOR_ATTACHMENT1, ctx.texture("Gather Coverage")},
-                               {GL_COLOR_ATTACHMENT2, ctx.texture("Radiosity Geometry")}}, "output radiance");
-    ctx.drawFullscreen(prog.id(), fbo, ctx.radiosityWidth(), ctx.radiosityHeight());
+    const bool masked = ctx.config.gatherInterleave > 1;
+    std::vector<FramebufferCache::Attachment> atts = {{GL_COLOR_ATTACHMENT0, ctx.texture("Output Radiance")},
+                                                      {GL_COLOR_ATTACHMENT1, ctx.texture("Gather Coverage")}};
+    if (masked) atts.push_back({GL_DEPTH_ATTACHMENT, ctx.texture("Gather Mask")});
+    const GLuint fbo = ctx.fbos.get(atts, masked ? "output radiance + gather mask" : "output radiance");
+    if (!masked) {
+        ctx.drawFullscreen(prog.id(), fbo, ctx.radiosityWidth(), ctx.radiosityHeight());
+        return;
+    }
+    // The full-screen triangle lies at depth 0.5: it passes where the mask holds 0. No depth writes, and the shader
+    // neither discards nor writes depth, so the test runs before it.
+    glBindFramebuffer(GL_FRAMEBUFFER, fbo);
+    glViewport(0, 0, ctx.radiosityWidth(), ctx.radiosityHeight());
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_GREATER);
+    glDepthMask(GL_FALSE);
+    glDisable(GL_CULL_FACE);
+    glDisable(GL_BLEND);
+    glUseProgram(prog.id());
+    glBindVertexArray(ctx.fullscreenVao);
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+    glDepthMask(GL_TRUE);
+    glDepthFunc(GL_LESS);
+    glDisable(GL_DEPTH_TEST);
 }
 
 }  // namespace deepgi

@@ -1,6 +1,5 @@
 #pragma once
 #include "renderer/passes/pass.h"
-#include "renderer/passes/reproject_radiance_pass.h"
 
 namespace deepgi {
 
@@ -26,10 +25,6 @@ private:
         gl::Uniform<float> time{*this, "uTime"};
         gl::Uniform<float> thickness{*this, "uThickness"};
         gl::Uniform<int> visibilitySteps{*this, "uVisibilitySteps"};
-        // The interleaved gather (DEEPGI_INTERLEAVE only): its reprojection test and this frame's blocks.
-        gl::OptionalUniform<int> interleave{*this, "uInterleave"};
-        gl::OptionalUniform<int> interleaveSlot{*this, "uInterleaveSlot"};
-        OptionalReprojectionUniforms reprojection{*this};
     };
     gl::ProgramSlot<Program> program_;
 };

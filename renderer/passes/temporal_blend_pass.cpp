@@ -11,9 +11,9 @@ TextureDecl radiosityScratch(const PipelineConfig& c) {
 }
 
 void TemporalBlendPass::table(const PipelineConfig& c, PassTable& t) const {
-    readReprojectionInputs(c, t);
+    t.read("History Weight", "uHistoryWeight");
     t.read("Reprojected Radiance", "uReprojected");
-    t.update("Output Radiance", "uCurrent").after(c.temporalFirst ? "" : "Bilateral blur");
+    t.update("Output Radiance", "uCurrent").after(!c.temporalFirst && c.blur ? "Bilateral blur" : "Radiosity gather");
     t.scratch(radiosityScratch(c));
     if (c.temporalFirst)
         t.write({"Temporal History", {"Temporal History"}, GL_R11F_G11F_B10F, GL_TEXTURE_2D, c.radiositySize(), 1,
@@ -23,8 +23,7 @@ void TemporalBlendPass::table(const PipelineConfig& c, PassTable& t) const {
 void TemporalBlendPass::execute(FrameContext& ctx) {
     const TemporalSettings& s = ctx.settings;
     const GLuint scratch = ctx.texture("Radiosity Scratch"), output = ctx.texture("Output Radiance");
-    Program& prog = program_.get(ctx.shaders, {"fullscreen.vert", "", "temporal_blend.frag", "", reprojectionDefines(ctx.config)});
-    prog.reprojection.set(ctx);
+    Program& prog = program_.get(ctx.shaders, {"fullscreen.vert", "", "temporal_blend.frag", "", {}});
     // With the interleaved gather about 1 in N of the blurred values is new this frame (the rest is the history
     // itself): the history weight that keeps temporal.alpha's response, 1 - alpha' = N (1 - alpha).
     const int n = ctx.config.gatherInterleave;

@@ -4,7 +4,7 @@
 
 namespace deepgi {
 
-// E = w * E_reprojected + (1 - w) * E_output, w = alpha * rejection(world distance). Written to the radiosity
+// E = w * E_reprojected + (1 - w) * E_output, w = alpha * History Weight (the rejection by world distance). Written to the radiosity
 // scratch and copied back into Output Radiance (and into Temporal History in temporal_first order).
 class TemporalBlendPass final : public RenderPass {
 public:
@@ -16,7 +16,6 @@ public:
 private:
     struct Program : gl::Program {
         using gl::Program::Program;
-        ReprojectionUniforms reprojection{*this};
         gl::Uniform<float> alpha{*this, "uAlpha"};
     };
     gl::ProgramSlot<Program> program_;
