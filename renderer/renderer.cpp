@@ -195,7 +195,7 @@ PipelineConfig Renderer::makeConfig(const Settings& s) const {
         c.radiosityDownsample = half ? 2 : 1;
         // The interleaved gather reuses the temporal filter's history: without the filter there is none.
         const RadiosityInterleave il = s.interleave == RadiosityInterleave::Auto
-                                           ? (software ? RadiosityInterleave::Two : RadiosityInterleave::Off)
+                                           ? (software ? RadiosityInterleave::Four : RadiosityInterleave::Off)
                                            : s.interleave;
         c.gatherInterleave = !s.temporal ? 1 : il == RadiosityInterleave::Two ? 2 : il == RadiosityInterleave::Four ? 4 : 1;
     }
