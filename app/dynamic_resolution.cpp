@@ -66,8 +66,12 @@ int DynamicResolution::next(bool moving, const FrameSample& last) {
     }
     if (samples_.size() >= 2) {
         const double a = samples_[samples_.size() - 1].frameMs, b = samples_[samples_.size() - 2].frameMs;
-        if (std::min(a, b) > kOver * target_ && step_ > kMinStep) {
-            const double frame = median(samples_, &FrameSample::frameMs, 3), render = median(samples_, &FrameSample::renderMs, 3);
+        const bool spike = std::min(a, b) > kOver * target_;
+        // A size whose frames sit just over the target does not hold it: six frames' median over it steps down too.
+        const bool over = samples_.size() >= 6 && median(samples_, &FrameSample::frameMs, 6) > target_;
+        if ((spike || over) && step_ > kMinStep) {
+            const size_t n = spike ? 3 : 6;
+            const double frame = median(samples_, &FrameSample::frameMs, n), render = median(samples_, &FrameSample::renderMs, n);
             setStep(std::min(step_ - 1, predict(frame, render, step_)));
         } else if (samples_.size() >= 6 && step_ < kSteps) {
             const double frame = median(samples_, &FrameSample::frameMs, 6), render = median(samples_, &FrameSample::renderMs, 6);

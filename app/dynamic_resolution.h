@@ -2,9 +2,9 @@
 // The viewer's dynamic resolution: while the camera moves, the render size is a fraction of the viewport (steps of
 // 1/8 from 1/4 to 1) chosen from the measured frame times against a target frame time; when the camera is still
 // it is the whole viewport. Plain logic (no GL, no window): the viewer feeds it each frame's times.
-// A new render size invalidates the renderer's temporal history, so it changes rarely: two frames over the target
-// step down (to the size predicted to hold it), six frames well under it step up by one, and a motion starts at the
-// size predicted from the still frames.
+// A new render size invalidates the renderer's temporal history, so it changes rarely: two frames 15 % over the
+// target, or six whose median is over it, step down (to the size predicted to hold it), six frames well under it step
+// up by one, and a motion starts at the size predicted from the still frames.
 #include <deque>
 
 namespace deepgi {
