@@ -48,22 +48,10 @@ void GatherSelectPass::execute(FrameContext& ctx) {
                                                       {GL_COLOR_ATTACHMENT2, ctx.texture("Radiosity Geometry")}};
     if (interleave > 1) atts.push_back({GL_DEPTH_ATTACHMENT, ctx.texture("Gather Mask")});
     const GLuint fbo = ctx.fbos.get(atts, interleave > 1 ? "gather select + mask" : "gather select");
-    glBindFramebuffer(GL_FRAMEBUFFER, fbo);
-    glViewport(0, 0, ctx.radiosityWidth(), ctx.radiosityHeight());
-    if (interleave > 1) {  // every pixel's depth written (gl_FragDepth), whatever was there
-        glEnable(GL_DEPTH_TEST);
-        glDepthFunc(GL_ALWAYS);
-        glDepthMask(GL_TRUE);
-    } else {
-        glDisable(GL_DEPTH_TEST);
-    }
-    glDisable(GL_CULL_FACE);
-    glDisable(GL_BLEND);
-    glUseProgram(prog.id());
-    glBindVertexArray(ctx.fullscreenVao);
-    glDrawArrays(GL_TRIANGLES, 0, 3);
-    glDepthFunc(GL_LESS);
-    glDisable(GL_DEPTH_TEST);
+    if (interleave > 1)  // every pixel's depth written (gl_FragDepth), whatever was there
+        ctx.drawFullscreenDepthTested(prog.id(), fbo, ctx.radiosityWidth(), ctx.radiosityHeight(), GL_ALWAYS, true);
+    else
+        ctx.drawFullscreen(prog.id(), fbo, ctx.radiosityWidth(), ctx.radiosityHeight());
 }
 
 }  // namespace deepgi

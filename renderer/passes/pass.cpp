@@ -135,6 +135,23 @@ void FrameContext::drawFullscreen(GLuint program, GLuint fbo, int w, int h) cons
     glDrawArrays(GL_TRIANGLES, 0, 3);
 }
 
+void FrameContext::drawFullscreenDepthTested(GLuint program, GLuint fbo, int w, int h, GLenum depthFunc,
+                                             bool depthWrite) const {
+    glBindFramebuffer(GL_FRAMEBUFFER, fbo);
+    glViewport(0, 0, w, h);
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(depthFunc);
+    glDepthMask(depthWrite ? GL_TRUE : GL_FALSE);
+    glDisable(GL_CULL_FACE);
+    glDisable(GL_BLEND);
+    glUseProgram(program);
+    glBindVertexArray(fullscreenVao);
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+    glDepthMask(GL_TRUE);
+    glDepthFunc(GL_LESS);
+    glDisable(GL_DEPTH_TEST);
+}
+
 int FrameContext::radiosityWidth() const {
     int w = 0, h = 0;
     config.radiositySize().resolve(width, height, 0, w, h);

@@ -172,6 +172,9 @@ struct FrameContext {
                       std::initializer_list<std::pair<const char*, const char*>> overrides = {}) const;
     // Draws a full-screen triangle into fbo with a viewport of w x h.
     void drawFullscreen(GLuint program, GLuint fbo, int w, int h) const;
+    // The same against fbo's depth attachment: depth test `depthFunc` (the triangle lies at depth 0.5), depth writes
+    // or not; afterwards depth test off, writes on, GL_LESS (the state the other passes expect).
+    void drawFullscreenDepthTested(GLuint program, GLuint fbo, int w, int h, GLenum depthFunc, bool depthWrite) const;
     // Size of the radiosity grid (config.radiositySize() of this screen).
     int radiosityWidth() const;
     int radiosityHeight() const;

@@ -71,19 +71,7 @@ void RadiosityGatherPass::execute(FrameContext& ctx) {
     }
     // The full-screen triangle lies at depth 0.5: it passes where the mask holds 0. No depth writes, and the shader
     // neither discards nor writes depth, so the test runs before it.
-    glBindFramebuffer(GL_FRAMEBUFFER, fbo);
-    glViewport(0, 0, ctx.radiosityWidth(), ctx.radiosityHeight());
-    glEnable(GL_DEPTH_TEST);
-    glDepthFunc(GL_GREATER);
-    glDepthMask(GL_FALSE);
-    glDisable(GL_CULL_FACE);
-    glDisable(GL_BLEND);
-    glUseProgram(prog.id());
-    glBindVertexArray(ctx.fullscreenVao);
-    glDrawArrays(GL_TRIANGLES, 0, 3);
-    glDepthMask(GL_TRUE);
-    glDepthFunc(GL_LESS);
-    glDisable(GL_DEPTH_TEST);
+    ctx.drawFullscreenDepthTested(prog.id(), fbo, ctx.radiosityWidth(), ctx.radiosityHeight(), GL_GREATER, false);
 }
 
 }  // namespace deepgi
