@@ -77,7 +77,8 @@ FloatImage renderDeepgi(const std::shared_ptr<Scene>& scene, Settings s, int w, 
 // with the order-2 harmonics); BENCHMARKS.md "Session 5" has the figures: the probes alone are 10 % bright (position
 // bias), and inside a sector the probes' sample does not know which part of it the taps covered. Session 13's fill
 // (a direction whose light the screen holds is drawn again): 21.6 / 22.7 / 24.1 %, ratio 1.12 / 1.14 / 1.16; session 14's
-// line-fit blur: 19.2 / 19.0 / 19.2 %, ratio 1.02 / 1.04 / 1.05. What is left (BENCHMARKS.md "Session 14"): half
+// line-fit blur: 19.2 / 19.0 / 19.2 %, ratio 1.02 / 1.04 / 1.05; session 16's interleave 4: 20.3 / 19.7 / 19.8 %,
+// ratio 0.99 / 1.01 / 1.02. What is left (BENCHMARKS.md "Session 14"): half
 // resolution (the probes alone 19.1 % at half, 15.4 % at full) and the wall's foot, whose light comes from a thin band
 // above the floor's horizon that 8x8 radiance texels do not resolve (12 x the truth at the foot, 0.92-1.07 above).
 TEST_F(GLTest, DISABLED_OneBounceInViewMatchesThePathTracer) {
