@@ -92,6 +92,12 @@ Renderer::Renderer(RendererOptions options, std::vector<std::unique_ptr<RenderPa
     glNamedBufferData(probeUbo_.id(), sizeof(ProbeVolumeUniforms), nullptr, GL_DYNAMIC_DRAW);
     scene_ = std::make_shared<Scene>();
     sceneGpu_ = std::make_unique<SceneGpu>(*scene_);
+    GLint extensions = 0;
+    glGetIntegerv(GL_NUM_EXTENSIONS, &extensions);
+    for (GLint i = 0; i < extensions; ++i) {
+        const char* e = reinterpret_cast<const char*>(glGetStringi(GL_EXTENSIONS, GLuint(i)));
+        if (e && std::strcmp(e, "GL_ARB_shader_viewport_layer_array") == 0) hasVertexLayer_ = true;
+    }
 }
 
 Renderer::~Renderer() = default;
@@ -186,6 +192,7 @@ PipelineConfig Renderer::makeConfig(const Settings& s) const {
     c.temporal = s.temporal;
     c.temporalFirst = s.filterOrder == FilterOrder::TemporalFirst && s.temporal;
     c.depthPeel = s.generation == GBufferGeneration::DepthPeel && s.layer2;
+    c.layeredVertex = s.layerRouting != LayerRouting::Geometry && hasVertexLayer_;
     c.ao = s.aoEnabled;
     if (c.indirect) {
         const char* glRenderer = reinterpret_cast<const char*>(glGetString(GL_RENDERER));

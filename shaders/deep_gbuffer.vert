@@ -1,12 +1,27 @@
 #version 450 core
 // Defines: NORMAL_MAPS (tangents interpolated), OBJECT_IDS (node index out), OBJECT_MOTION (last frame's position
 // from the object's previous matrix; without, the object is still: its previous position is this one).
+// LAYERED: no geometry shader; instance i of the draw goes to layer uFirstLayer + i (gl_Layer from the vertex
+// stage), so the outputs are the fragment shader's inputs (block GS, gs* names).
+#ifdef LAYERED
+#extension GL_ARB_shader_viewport_layer_array : require
+#define vsTangent gsTangent
+#define vsPrevWorld gsPrevWorld
+#define vsObjectId gsObjectId
+#include "common.glsl"
+uniform int uFirstLayer;
+uniform int uLayerCount;
+#endif
 #include "scene_objects.glsl"
 layout(location = 0) in vec3 aPosition;
 layout(location = 1) in vec3 aNormal;
 layout(location = 2) in vec2 aUV;
 layout(location = 3) in vec4 aTangent;  // xyz, w = handedness (Vertex::tangent)
+#ifdef LAYERED
+out GS { vec3 world; vec3 normal; vec2 uv; } vs;
+#else
 out VS { vec3 world; vec3 normal; vec2 uv; } vs;
+#endif
 #ifdef NORMAL_MAPS
 out vec4 vsTangent;
 #endif
@@ -30,5 +45,10 @@ void main() {
 #ifdef OBJECT_IDS
     vsObjectId = o.id.x;
 #endif
+#ifdef LAYERED
+    gl_Layer = uFirstLayer + min(gl_InstanceID, uLayerCount - 1);
+    gl_Position = uViewProj * vec4(vs.world, 1.0);
+#else
     gl_Position = vec4(vs.world, 1.0);
+#endif
 }

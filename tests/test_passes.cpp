@@ -1,6 +1,8 @@
 // Each pass proven on a scene built for it.
 #include "gl_fixture.h"
 
+#include <map>
+
 #include "renderer/passes/radiosity_gather_pass.h"
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -33,14 +35,17 @@ void fillTexture(GLuint tex, const glm::vec3& v) { glClearTexImage(tex, 0, GL_RG
 }  // namespace
 
 // Layer 2 of a box behind a plane has the analytic depth and honours the minimum separation, in both the
-// single-pass predicted mode (still camera) and the two-pass depth-peeling oracle.
+// single-pass predicted mode (still camera) and the two-pass depth-peeling oracle, with either layer routing (the
+// vertex stage's gl_Layer, or the geometry shader).
 TEST_F(GLTest, DeepGBufferLayer2DepthAndMinimumSeparation) {
     auto scene = layeredScene();
+    for (LayerRouting routing : {LayerRouting::Vertex, LayerRouting::Geometry})
     for (GBufferGeneration generation : {GBufferGeneration::Predicted, GBufferGeneration::DepthPeel}) {
         for (auto [dz, expected] : {std::pair{0.5f, 3.0f}, std::pair{1.5f, 6.0f}}) {
             auto renderer = rendererFor(scene, 64, 48, "cam");
             Renderer& r = *renderer;
             Settings s;
+            s.layerRouting = routing;
             s.generation = generation;
             s.lengthUnit = 1.0f;  // the lengths below are in scene units
             s.minSeparation = dz;
@@ -53,6 +58,38 @@ TEST_F(GLTest, DeepGBufferLayer2DepthAndMinimumSeparation) {
             EXPECT_NEAR(d1.at(2, 2, 0), 6.0f, 2e-3f * 6.0f);
             EXPECT_GE(d2.at(2, 2, 0), r.camera().zfar * 0.999f);
         }
+    }
+}
+
+// The two layer routings fill the same deep G-buffer, layer 1 and the predicted layer 2, while the camera moves
+// (the prediction reads last frame's depth). On llvmpipe, which has GL_ARB_shader_viewport_layer_array, auto takes
+// the vertex route; the geometry shader's route is the paper's and the independent answer.
+TEST_F(GLTest, LayerRoutingsFillTheSameDeepGBuffer) {
+    auto scene = cornellScene();
+    std::map<std::string, FloatImage> got[2];
+    for (int k : {0, 1}) {
+        auto renderer = rendererFor(scene, 80, 60, "front");
+        Renderer& r = *renderer;
+        Settings s;
+        s.layerRouting = k == 0 ? LayerRouting::Auto : LayerRouting::Geometry;
+        s.lengthUnit = 1.0f;
+        s.minSeparation = 0.2f;
+        Camera cam = r.camera();
+        for (int i = 0; i < 4; ++i) {
+            cam.cameraToWorld[3] += glm::vec4(0.03f, 0.0f, 0.0f, 0.0f);
+            r.setCamera(cam);
+            r.render(s);
+        }
+        EXPECT_EQ(r.config().layeredVertex, k == 0) << "auto takes the vertex route on llvmpipe";
+        for (const char* name : {"Depth 1", "Depth 2", "Normal 1", "Normal 2", "Albedo 1", "Albedo 2"}) got[k][name] = r.readLayer(name);
+    }
+    for (const auto& [name, a] : got[0]) {
+        const FloatImage& b = got[1][name];
+        ASSERT_EQ(a.pixels.size(), b.pixels.size());
+        int differ = 0;
+        for (size_t i = 0; i < a.pixels.size(); ++i)
+            if (std::abs(a.pixels[i] - b.pixels[i]) > 1e-5f * std::max(1.0f, std::abs(b.pixels[i]))) ++differ;
+        EXPECT_EQ(differ, 0) << name;
     }
 }
 

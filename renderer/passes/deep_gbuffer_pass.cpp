@@ -1,5 +1,6 @@
 #include "renderer/passes/deep_gbuffer_pass.h"
 
+
 namespace deepgi {
 
 static constexpr int kGatherLevels = 6;  // mip levels 0..5 read by the radiosity gather
@@ -66,10 +67,14 @@ void DeepGBufferPass::drawScene(FrameContext& ctx, int firstLayer, int layerCoun
         // Layer 1 alone: no discard in the shader, so llvmpipe tests depth before shading (early z) and shades
         // each pixel's front surface only, not every surface behind it.
         if (firstLayer == 0 && layerCount == 1) defs.push_back("LAYER1_ONLY");
+        // gbuffer.layer_routing: instance i of each draw goes to layer firstLayer + i from the vertex stage (no
+        // geometry shader: on llvmpipe it cost the heavy scene's pass 1.4 x), or the geometry shader emits it per layer.
+        const bool layered = ctx.config.layeredVertex;
+        if (layered) defs.push_back("LAYERED");
         ctx.scene.draw([&](unsigned textures) {
             std::vector<std::string> variant = defs;
             for (auto& d : SceneGpu::materialTextureDefines(textures)) variant.push_back(d);
-            Program& prog = program_.get(ctx.shaders, {"deep_gbuffer.vert", "deep_gbuffer.geom", "deep_gbuffer.frag", "", variant});
+            Program& prog = program_.get(ctx.shaders, {"deep_gbuffer.vert", layered ? "" : "deep_gbuffer.geom", "deep_gbuffer.frag", "", variant});
             glUseProgram(prog.id());
             prog.firstLayer.set(firstLayer);
             prog.layerCount.set(layerCount);
@@ -78,7 +83,7 @@ void DeepGBufferPass::drawScene(FrameContext& ctx, int firstLayer, int layerCoun
             prog.diffuseOnly.set(ctx.settings.diffuseOnly);
             ctx.bindSamplers(prog, {{"uPeelDepth", peelDepth}});
             return prog.id();
-        }, masked, true);
+        }, masked, true, layered ? layerCount : 1);
     }
 }
 

@@ -97,7 +97,7 @@ std::vector<std::string> SceneGpu::materialTextureDefines(unsigned textures) {
     return defs;
 }
 
-void SceneGpu::draw(const ProgramFor& programFor, bool masked, bool cullBackFaces) const {
+void SceneGpu::draw(const ProgramFor& programFor, bool masked, bool cullBackFaces, int instances) const {
     glBindVertexArray(vao_.id());
     GLuint program = 0;
     unsigned programTextures = ~0u;
@@ -136,7 +136,7 @@ void SceneGpu::draw(const ProgramFor& programFor, bool masked, bool cullBackFace
         glBindTextureUnit(4, oTex);
         if (cullBackFaces && !m.doubleSided) glEnable(GL_CULL_FACE);
         else glDisable(GL_CULL_FACE);
-        drawBatch(b);
+        drawBatch(b, instances);
     }
     glDisable(GL_CULL_FACE);
 }
@@ -159,10 +159,10 @@ uint64_t SceneGpu::geometryBytes(const Scene& scene) {
     return bytes;
 }
 
-void SceneGpu::drawBatch(const Batch& b) const {
+void SceneGpu::drawBatch(const Batch& b, int instances) const {
     if (allVisible_) {
-        glDrawElements(GL_TRIANGLES, GLsizei(b.indexCount), GL_UNSIGNED_INT,
-                       reinterpret_cast<const void*>(uintptr_t(b.firstIndex) * sizeof(uint32_t)));
+        glDrawElementsInstanced(GL_TRIANGLES, GLsizei(b.indexCount), GL_UNSIGNED_INT,
+                                reinterpret_cast<const void*>(uintptr_t(b.firstIndex) * sizeof(uint32_t)), instances);
         return;
     }
     // Visible parts only, consecutive ones merged into one range.
@@ -181,7 +181,11 @@ void SceneGpu::drawBatch(const Batch& b) const {
         count += r.indexCount;
     }
     flush();
-    if (!counts.empty()) glMultiDrawElements(GL_TRIANGLES, counts.data(), GL_UNSIGNED_INT, offsets.data(), GLsizei(counts.size()));
+    if (instances == 1) {
+        if (!counts.empty()) glMultiDrawElements(GL_TRIANGLES, counts.data(), GL_UNSIGNED_INT, offsets.data(), GLsizei(counts.size()));
+        return;
+    }
+    for (size_t i = 0; i < counts.size(); ++i) glDrawElementsInstanced(GL_TRIANGLES, counts[i], GL_UNSIGNED_INT, offsets[i], instances);
 }
 
 void SceneGpu::updateObjects(const Scene& scene) {

@@ -33,7 +33,8 @@ public:
     // Draws the batches with the given alpha mode (masked or opaque) with the program programFor() gives for
     // each material's textures, setting its material uniforms (material.glsl) and binding textures. Back faces
     // are culled except for double-sided materials when cullBackFaces is set.
-    void draw(const ProgramFor& programFor, bool masked, bool cullBackFaces) const;
+    // instances > 1: every batch drawn that many times (gl_InstanceID), e.g. once per layer of a layered target.
+    void draw(const ProgramFor& programFor, bool masked, bool cullBackFaces, int instances = 1) const;
     bool hasMasked() const { return hasMasked_; }
     bool hasOpaque() const { return hasOpaque_; }
     bool empty() const { return batches_.empty(); }
@@ -58,7 +59,7 @@ private:
         int32_t baseVertex;
         std::vector<Range> parts;  // consecutive sub-ranges, one per part
     };
-    void drawBatch(const Batch& b) const;
+    void drawBatch(const Batch& b, int instances) const;
     std::vector<glm::mat4> current_, lastFrame_, uploadedPrev_;
     std::vector<char> visible_;
     bool allVisible_ = true, objectsDirty_ = true;
