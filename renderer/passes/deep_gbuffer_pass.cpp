@@ -1,6 +1,5 @@
 #include "renderer/passes/deep_gbuffer_pass.h"
 
-
 namespace deepgi {
 
 static constexpr int kGatherLevels = 6;  // mip levels 0..5 read by the radiosity gather

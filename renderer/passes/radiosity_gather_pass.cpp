@@ -1,7 +1,6 @@
 #include "renderer/passes/radiosity_gather_pass.h"
 
 #include "renderer/passes/probe_update_pass.h"
-#include "renderer/passes/reproject_radiance_pass.h"
 
 #include <algorithm>
 #include <cmath>

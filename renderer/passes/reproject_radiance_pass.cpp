@@ -2,19 +2,11 @@
 
 namespace deepgi {
 
-void readReprojectionInputs(const PipelineConfig& c, PassTable& t) {
+void ReprojectRadiancePass::table(const PipelineConfig& c, PassTable& t) const {
+    // reprojection.glsl's inputs: this frame's layer-1 depth, last frame's, and each surface's own motion.
     t.read("Depth", "uDepth").level(Levels::Base);
     t.read("Last Depth", "uLastDepthTex");
-    if (c.objectMotion) t.read("Motion", "uMotion");  // each surface's own motion (deep G-buffer pass)
-}
-
-std::vector<std::string> reprojectionDefines(const PipelineConfig& c) {
-    if (c.objectMotion) return {"OBJECT_MOTION"};
-    return {};
-}
-
-void ReprojectRadiancePass::table(const PipelineConfig& c, PassTable& t) const {
-    readReprojectionInputs(c, t);
+    if (c.objectMotion) t.read("Motion", "uMotion");
     // Last frame's filtered irradiance: unblurred (temporal_first) or the final Output Radiance.
     t.history(c.temporalFirst ? "Temporal History" : "Output Radiance", "uHistory");
     t.write({"Reprojected Radiance", {"Reprojected Radiance"}, GL_R11F_G11F_B10F, GL_TEXTURE_2D, c.radiositySize(), 1,
@@ -26,8 +18,13 @@ void ReprojectRadiancePass::table(const PipelineConfig& c, PassTable& t) const {
 }
 
 void ReprojectRadiancePass::execute(FrameContext& ctx) {
-    Program& prog = program_.get(ctx.shaders, {"fullscreen.vert", "", "reproject_radiance.frag", "", reprojectionDefines(ctx.config)});
-    prog.reprojection.set(ctx);
+    std::vector<std::string> defines;
+    if (ctx.config.objectMotion) defines.push_back("OBJECT_MOTION");  // else the camera's motion alone
+    Program& prog = program_.get(ctx.shaders, {"fullscreen.vert", "", "reproject_radiance.frag", "", defines});
+    const TemporalSettings& s = ctx.settings;
+    prog.falloffStart.set(s.falloffStart);
+    prog.falloffEnd.set(s.falloffEnd);
+    prog.historyValid.set(ctx.historyValid);
     ctx.bindSamplers(prog);
     GLuint fbo = ctx.fbos.get({{GL_COLOR_ATTACHMENT0, ctx.texture("Reprojected Radiance")},
                                {GL_COLOR_ATTACHMENT1, ctx.texture("History Weight")}}, "reprojected radiance");

@@ -1,6 +1,6 @@
 #pragma once
 #include "renderer/passes/pass.h"
-#include "renderer/passes/reproject_radiance_pass.h"
+#include "renderer/passes/pass.h"
 
 namespace deepgi {
 
