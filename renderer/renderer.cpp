@@ -585,10 +585,8 @@ FloatImage Renderer::readLayer(const std::string& layerName, int level, bool dec
     const int w = std::max(1, (e->width >> level) - 2 * guard), h = std::max(1, (e->height >> level) - 2 * guard);
     const bool depth = gl::isDepthFormat(d.format);
     const int faces = cube ? 6 : 1;
-    const bool two = d.format == GL_RG8_SNORM || d.format == GL_RG32F || d.format == GL_RG16F;
-    const bool four = d.format == GL_RGBA8 || d.format == GL_RGBA16F || d.format == GL_RGBA32F;
     const bool integer = d.format == GL_R32UI;  // Object ID: read as integers, returned as floats (exact below 2^24)
-    int channels = depth || d.format == GL_R8 || integer ? 1 : two ? 2 : four ? 4 : 3;
+    const int channels = gl::formatChannels(d.format);
     const GLenum fmt = depth ? GL_DEPTH_COMPONENT : integer ? GL_RED_INTEGER : channels == 1 ? GL_RED : channels == 2 ? GL_RG : channels == 3 ? GL_RGB : GL_RGBA;
     std::vector<float> raw(size_t(w) * h * channels * faces);
     glPixelStorei(GL_PACK_ALIGNMENT, 1);

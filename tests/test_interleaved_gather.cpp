@@ -34,7 +34,8 @@ FloatImage indirectPart(const std::shared_ptr<Scene>& scene, Renderer& r, int w,
 
 // Without a history (the first frame, a camera cut) no block can reuse anything: every pixel gathers, and the frame
 // is the non-interleaved one exactly. On the next frame of a still view the other blocks reuse: their coverage is 0
-// (nothing gathered there), about 1 - 1/N of the receivers whose full gather covers something.
+// (nothing gathered there), about 1 - 1/N of the receivers whose full gather covers something, and Gather Mask holds
+// 1 exactly there.
 TEST_F(GLTest, InterleavedGatherWithoutHistoryGathersEveryPixel) {
     auto scene = cornellScene();
     auto off = rendererFor(scene, 160, 120, "front");
@@ -51,15 +52,22 @@ TEST_F(GLTest, InterleavedGatherWithoutHistoryGathersEveryPixel) {
         for (size_t i = 0; i < out.pixels.size(); ++i) maxDiff = std::max(maxDiff, double(std::abs(out.pixels[i] - offOut.pixels[i])));
         EXPECT_EQ(maxDiff, 0.0) << "interleave " << (n == RadiosityInterleave::Two ? 2 : 4);
 
+        const FloatImage firstMask = r->readLayer("Gather Mask");  // every receiver gathers: 0 (1 = reuse or sky)
         r->render(with(n));
-        const FloatImage coverage = r->readLayer("Gather Coverage");
-        int receivers = 0, skipped = 0;
+        const FloatImage coverage = r->readLayer("Gather Coverage"), mask = r->readLayer("Gather Mask");
+        ASSERT_EQ(mask.channels, 1);
+        int receivers = 0, skipped = 0, maskDisagrees = 0;
         for (int y = 0; y < coverage.height; ++y)
             for (int x = 0; x < coverage.width; ++x) {
                 if (!(offCoverage.at(x, y, 0) > 0.0f)) continue;  // sky, or nothing on screen in reach
                 ++receivers;
-                if (coverage.at(x, y, 0) == 0.0f) ++skipped;
+                EXPECT_EQ(firstMask.at(x, y, 0), 0.0f) << x << " " << y;
+                const bool skip = coverage.at(x, y, 0) == 0.0f;
+                if (skip) ++skipped;
+                // The mask, read back as the inspector and the dumps show it, is the gather's selection.
+                if ((mask.at(x, y, 0) == 1.0f) != skip) ++maskDisagrees;
             }
+        EXPECT_EQ(maskDisagrees, 0) << "interleave " << (n == RadiosityInterleave::Two ? 2 : 4);
         const double expected = n == RadiosityInterleave::Two ? 0.5 : 0.75;
         ASSERT_GT(receivers, 0);
         EXPECT_NEAR(double(skipped) / receivers, expected, 0.1) << "interleave " << (n == RadiosityInterleave::Two ? 2 : 4);

@@ -337,6 +337,30 @@ TEST_F(GLTest, InputRadiance2HoldsLayer2AfterTheFrame) {
     EXPECT_TRUE(scratch);
 }
 
+// Every texture the pipeline declares has a format the memory report and the read-back know: a name, its bits
+// (the report's sums) and its channels (a depth format reads back as one). A format missing from renderer/gl's
+// tables showed as "?" with 0 bytes (Gather Mask, Object ID) and read back as zeros.
+TEST_F(GLTest, EveryDeclaredFormatIsKnown) {
+    RendererOptions o;
+    o.sceneEditing = true;  // Object ID and Motion too
+    Renderer r(o);
+    r.setScene(cornellScene());
+    r.resize(64, 48);
+    r.setCamera(selectCamera(r.scene(), "front"));
+    Settings s;
+    s.interleave = RadiosityInterleave::Four;  // Gather Mask
+    s.aoEnabled = true;
+    r.render(s);
+    int checked = 0;
+    for (const auto& e : r.textures().entries()) {
+        ++checked;
+        EXPECT_STRNE(gl::formatName(e.decl.format), "?") << e.decl.name;
+        EXPECT_GT(gl::formatBits(e.decl.format), 0) << e.decl.name;
+        if (gl::isDepthFormat(e.decl.format)) EXPECT_EQ(gl::formatChannels(e.decl.format), 1) << e.decl.name;
+    }
+    EXPECT_GT(checked, 20);
+}
+
 // Renderer::graph(): the default pipeline in execution order with what each pass reads and writes.
 TEST_F(GLTest, GraphListsThePipelineInOrder) {
     auto scene = cornellScene();

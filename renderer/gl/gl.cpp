@@ -76,9 +76,9 @@ void installDebugOutput(bool verbose) {
 int formatBits(GLenum f) {
     switch (f) {
     case GL_DEPTH_COMPONENT32: case GL_DEPTH_COMPONENT32F: case GL_R11F_G11F_B10F: case GL_RGBA8:
-    case GL_SRGB8_ALPHA8: case GL_R32F: case GL_RG16F: case GL_RGB10_A2: case GL_RG16_SNORM: return 32;
+    case GL_SRGB8_ALPHA8: case GL_R32F: case GL_R32UI: case GL_RG16F: case GL_RGB10_A2: case GL_RG16_SNORM: return 32;
     case GL_RGB8: return 24;
-    case GL_RG8_SNORM: case GL_RG8: case GL_R16F: return 16;
+    case GL_RG8_SNORM: case GL_RG8: case GL_R16F: case GL_DEPTH_COMPONENT16: return 16;
     case GL_R8: return 8;
     case GL_RGBA16F: case GL_RG32F: return 64;
     case GL_RGBA32F: return 128;
@@ -91,6 +91,8 @@ const char* formatName(GLenum f) {
     switch (f) {
     case GL_DEPTH_COMPONENT32: return "DEPTH_COMPONENT32";
     case GL_DEPTH_COMPONENT32F: return "DEPTH_COMPONENT32F";
+    case GL_DEPTH_COMPONENT24: return "DEPTH_COMPONENT24";
+    case GL_DEPTH_COMPONENT16: return "DEPTH_COMPONENT16";
     case GL_R11F_G11F_B10F: return "R11F_G11F_B10F";
     case GL_RGBA8: return "RGBA8";
     case GL_SRGB8_ALPHA8: return "SRGB8_ALPHA8";
@@ -100,6 +102,8 @@ const char* formatName(GLenum f) {
     case GL_RGBA32F: return "RGBA32F";
     case GL_RG32F: return "RG32F";
     case GL_R32F: return "R32F";
+    case GL_R32UI: return "R32UI";
+    case GL_R16F: return "R16F";
     case GL_R8: return "R8";
     case GL_RG16F: return "RG16F";
     }
@@ -107,7 +111,17 @@ const char* formatName(GLenum f) {
 }
 
 bool isDepthFormat(GLenum f) {
-    return f == GL_DEPTH_COMPONENT32 || f == GL_DEPTH_COMPONENT32F || f == GL_DEPTH_COMPONENT24;
+    return f == GL_DEPTH_COMPONENT32 || f == GL_DEPTH_COMPONENT32F || f == GL_DEPTH_COMPONENT24 || f == GL_DEPTH_COMPONENT16;
+}
+
+int formatChannels(GLenum f) {
+    if (isDepthFormat(f)) return 1;
+    switch (f) {
+        case GL_R8: case GL_R16F: case GL_R32F: case GL_R8_SNORM: case GL_R16_SNORM: case GL_R32UI: return 1;
+        case GL_RG8: case GL_RG8_SNORM: case GL_RG16F: case GL_RG32F: case GL_RG16_SNORM: return 2;
+        case GL_RGB8: case GL_R11F_G11F_B10F: case GL_RGB16F: case GL_RGB32F: case GL_SRGB8: return 3;
+        default: return 4;
+    }
 }
 
 }  // namespace deepgi::gl

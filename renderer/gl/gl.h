@@ -62,5 +62,7 @@ void installDebugOutput(bool verbose);
 int formatBits(GLenum internalFormat);
 const char* formatName(GLenum internalFormat);
 bool isDepthFormat(GLenum internalFormat);
+// Channels a read-back of the format returns (1 for depth).
+int formatChannels(GLenum internalFormat);
 
 }  // namespace deepgi::gl

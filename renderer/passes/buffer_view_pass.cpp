@@ -87,16 +87,6 @@ BufferSource bufferSource(const TextureRegistry& registry, const std::string& la
     return s;
 }
 
-int BufferViewPass::channelCount(GLenum format) {
-    if (gl::isDepthFormat(format)) return 1;
-    switch (format) {
-        case GL_R8: case GL_R16F: case GL_R32F: case GL_R8_SNORM: case GL_R16_SNORM: case GL_R32UI: return 1;
-        case GL_RG8: case GL_RG8_SNORM: case GL_RG16F: case GL_RG32F: case GL_RG16_SNORM: return 2;
-        case GL_RGB8: case GL_R11F_G11F_B10F: case GL_RGB16F: case GL_RGB32F: case GL_SRGB8: return 3;
-        default: return 4;
-    }
-}
-
 BufferViewPass::BufferViewPass() : program_(std::make_unique<gl::ProgramSlot<Program>>()) {
     fbo_ = gl::createFramebuffer("buffer view");
     vao_ = gl::createVertexArray("buffer view triangle");
@@ -207,7 +197,7 @@ TexelBlock BufferViewPass::readTexels(const BufferSource& s, int x0, int y0, int
     b.y0 = cy0;
     b.width = cx1 - cx0;
     b.height = cy1 - cy0;
-    b.channels = channelCount(s.format);
+    b.channels = gl::formatChannels(s.format);
     const GLenum fmt = gl::isDepthFormat(s.format) ? GL_DEPTH_COMPONENT
                        : b.channels == 1 ? GL_RED : b.channels == 2 ? GL_RG : b.channels == 3 ? GL_RGB : GL_RGBA;
     b.values.assign(size_t(b.width) * b.height * b.channels, 0.0f);

@@ -86,7 +86,6 @@ public:
     // Reads texels [x0, x0+w) x [y0, y0+h) (clipped to the level) of a source, raw values (depth as stored,
     // normals as stored), without reading the rest of the texture.
     static TexelBlock readTexels(const BufferSource& s, int x0, int y0, int w, int h);
-    static int channelCount(GLenum format);
 
 private:
     GLuint viewOf(const BufferSource& s);  // a 2D-array view of a cube-map array (cached)
