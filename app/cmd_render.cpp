@@ -36,8 +36,10 @@ CommandRegistrar registrar("render", "Render a glTF scene headless (OSMesa) to a
         RenderJobResult r = runRenderJob(*job);
         std::printf("deepgi: rendered %s (%dx%d, %d frames, %zu triangles) on %s\n", job->scenePath.c_str(), job->width,
                     job->height, job->frames, r.triangles, r.glRenderer.c_str());
-        std::printf("deepgi: median frame %.1f ms; wrote %s/final.png, final.exr, timings.json, settings.json%s\n",
-                    r.medianFrameMs, job->outDir.c_str(), r.buffersWritten ? " and buffers" : "");
+        char gpu[64] = "";
+        if (r.gpuTimed) std::snprintf(gpu, sizeof gpu, " wall (passes %.2f ms on the GPU)", r.medianGpuPassesMs);
+        std::printf("deepgi: median frame %.1f ms%s; wrote %s/final.png, final.exr, timings.json, settings.json%s\n",
+                    r.medianFrameMs, gpu, job->outDir.c_str(), r.buffersWritten ? " and buffers" : "");
         for (const auto& w : r.warnings) std::fprintf(stderr, "deepgi: warning: %s\n", w.c_str());
         return 0;
     };

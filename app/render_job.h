@@ -26,7 +26,9 @@ struct RenderJob {
 };
 
 struct RenderJobResult {
-    double medianFrameMs = 0.0;
+    double medianFrameMs = 0.0;  // software GL: the passes' sum (glFinish around each); a GPU: wall clock per frame
+    double medianGpuPassesMs = 0.0;  // a GPU: the passes' GL_TIME_ELAPSED sum (0 on software GL)
+    bool gpuTimed = false;
     size_t triangles = 0;
     bool buffersWritten = false;
     std::string glRenderer;

@@ -76,6 +76,7 @@ struct BenchResult {
     std::vector<std::string> ratioLines; // the paper's claims, as measured
     double wholeFrameMs = 0.0;
     std::string glRenderer;
+    bool gpuTimed = false;  // passes timed by GL_TIME_ELAPSED queries (a GPU)
 };
 
 // Runs the whole bench and writes its files. Needs no current context (creates one).

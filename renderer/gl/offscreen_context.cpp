@@ -127,4 +127,9 @@ std::string OffscreenContext::renderer() const {
 
 std::string OffscreenContext::description() const { return description_; }
 
+bool OffscreenContext::isSoftware() const {
+    const std::string r = renderer();
+    return r.find("llvmpipe") != std::string::npos || r.find("softpipe") != std::string::npos;
+}
+
 }  // namespace deepgi::gl

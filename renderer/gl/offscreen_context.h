@@ -19,6 +19,7 @@ public:
     OffscreenContext(const OffscreenContext&) = delete;
     OffscreenContext& operator=(const OffscreenContext&) = delete;
     std::string renderer() const;  // GL_RENDERER
+    bool isSoftware() const;       // llvmpipe/softpipe: GPU timer queries are not trustworthy
     std::string description() const;  // kind and how it was made, e.g. "egl (surfaceless, no surface)"
     static bool eglAvailable();        // built with EGL
 
