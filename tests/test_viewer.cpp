@@ -54,18 +54,9 @@ protected:
             << extra << " '" << DEEPGI_ASSET_DIR << "/cornell_box/cornell_box.gltf' " << (fresh ? kNoProbes : "") << "> '" << log << "' 2>&1";
         return runUnderXvfb(cmd.str(), log);
     }
-    // xvfb-run exits 5 when it cannot remove its own temporary folder, whatever the viewer did (seen with several
-    // xvfb-run -a at once): that run's status is lost, so it runs once more.
     static ViewerRun runUnderXvfb(const std::string& cmd, const std::string& log) {
-        ViewerRun r;
-        for (int attempt = 0; attempt < 2; ++attempt) {
-            const int status = std::system(cmd.c_str());
-            r.rc = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-            std::ifstream in(log);
-            r.log.assign(std::istreambuf_iterator<char>(in), {});
-            if (!(r.rc == 5 && r.log.find("xvfb-run: error: problem while cleaning up") != std::string::npos)) break;
-        }
-        return r;
+        const deepgi::test::XvfbRun x = deepgi::test::runUnderXvfb(cmd, log);
+        return {x.rc, x.log};
     }
     deepgi::FloatImage shot(const std::string& name) {
         deepgi::FloatImage img = deepgi::readImage(path(name));

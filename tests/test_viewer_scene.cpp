@@ -45,15 +45,9 @@ protected:
             << "' --set probes.rays_per_frame=1048576 --set probes.settle_updates=1 --set radiosity.temporally_vary=false"
                " --set radiosity.bounce_damping=1 --set temporal.enabled=false --set light.shadow_map_size=512 --target-frame-ms 0 > '"
             << path("log.txt") << "' 2>&1";
-        int rc = -1;
-        for (int attempt = 0; attempt < 2; ++attempt) {  // xvfb-run's own cleanup failure (status 5): once more
-            const int status = std::system(cmd.str().c_str());
-            rc = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-            std::ifstream in(path("log.txt"));
-            log_.assign(std::istreambuf_iterator<char>(in), {});
-            if (!(rc == 5 && log_.find("xvfb-run: error: problem while cleaning up") != std::string::npos)) break;
-        }
-        return rc;
+        const deepgi::test::XvfbRun r = deepgi::test::runUnderXvfb(cmd.str(), path("log.txt"));
+        log_ = r.log;
+        return r.rc;
     }
     json dump(const std::string& name) {
         std::ifstream in(path(name));

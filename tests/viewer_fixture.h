@@ -3,14 +3,41 @@
 // path printed) when it fails, so that the screenshots and the log can be looked at.
 
 #include <gtest/gtest.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
+#include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <string>
+#include <thread>
 
 namespace deepgi::test {
+
+struct XvfbRun {
+    int rc = -1;      // the viewer's exit status
+    std::string log;  // what the command wrote to its log file
+};
+
+// Runs a shell command that starts the viewer under xvfb-run and writes its output to `log`. xvfb-run exits 5 when it
+// cannot remove its own temporary folder, whatever the viewer did (seen with several xvfb-run -a at once; once twice
+// in a row, and once without its message in the log): that run's status is lost, so it runs again. deepgi never
+// exits 5 (it exits 0, 1, or CLI11's codes of 100 and above).
+inline XvfbRun runUnderXvfb(const std::string& cmd, const std::string& log) {
+    XvfbRun r;
+    for (int attempt = 0; attempt < 4; ++attempt) {
+        if (attempt > 0) std::this_thread::sleep_for(std::chrono::seconds(1));
+        const int status = std::system(cmd.c_str());
+        r.rc = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+        std::ifstream in(log);
+        r.log.assign(std::istreambuf_iterator<char>(in), {});
+        if (r.rc != 5) break;
+    }
+    return r;
+}
 
 class ViewerTestFolder : public ::testing::Test {
 protected:
