@@ -179,7 +179,7 @@ int Renderer::lastGeometryPasses() const {
 
 PipelineConfig Renderer::makeConfig(const Settings& s) const {
     PipelineConfig c;
-    c.layer2 = s.layer2;
+    c.layer2 = s.layer2 && (s.indirect || s.aoEnabled);  // only the gather and the AO read layer 2
     c.emission = scene_->hasEmission();
     c.specular = scene_->hasSpecular() && !s.diffuseOnly;
     c.occlusion = scene_->hasOcclusion();
@@ -193,10 +193,15 @@ PipelineConfig Renderer::makeConfig(const Settings& s) const {
     c.temporalFirst = s.filterOrder == FilterOrder::TemporalFirst && s.temporal;
     c.depthPeel = s.generation == GBufferGeneration::DepthPeel && s.layer2;
     c.layeredVertex = s.layerRouting != LayerRouting::Geometry && hasVertexLayer_;
+    const char* glRenderer = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
+    const bool software = glRenderer && (std::strstr(glRenderer, "llvmpipe") || std::strstr(glRenderer, "softpipe"));
+    // The prepass pays two more geometry passes to shade each pixel once: worth it while fragments cost more than
+    // vertices (on llvmpipe: the atrium, Sponza; not the heavy scene's 4.6 triangles per pixel at 640x360).
+    const bool fragmentBound = double(scene_->triangleCount()) < 2.0 * double(frameWidth()) * double(frameHeight());
+    c.layer2Prepass = c.layer2 && (s.layer2Prepass == Layer2Prepass::On ||
+                                   (s.layer2Prepass == Layer2Prepass::Auto && software && fragmentBound));
     c.ao = s.aoEnabled;
     if (c.indirect) {
-        const char* glRenderer = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
-        const bool software = glRenderer && (std::strstr(glRenderer, "llvmpipe") || std::strstr(glRenderer, "softpipe"));
         const bool half = s.radiosityResolution == RadiosityResolution::Half ||
                           (s.radiosityResolution == RadiosityResolution::Auto && software);
         c.radiosityDownsample = half ? 2 : 1;

@@ -47,12 +47,14 @@ void writeMaterial(vec3 base) {
 #endif
 }
 
+// LAYER2_PREPASS: layer 2's depth only (the tests that discard, no outputs); LAYER2_SHADE: layer 2's outputs for the
+// fragment that won the prepass (depth test EQUAL, no discard, so llvmpipe tests depth before shading).
 void main() {
     vec4 base = baseColor(gs.uv);
-#ifdef MASKED
+#if defined(MASKED) && !defined(LAYER2_SHADE)
     if (base.a < uAlphaCutoff) discard;
 #endif
-#ifndef LAYER1_ONLY
+#if !defined(LAYER1_ONLY) && !defined(LAYER2_SHADE)
     if (gl_Layer == 1) {
         if (uPeel != 0) {
             float d0 = texelFetch(uPeelDepth, ivec2(gl_FragCoord.xy), 0).r;
@@ -74,6 +76,9 @@ void main() {
             }
         }
     }
+#endif
+#ifdef LAYER2_PREPASS
+    return;
 #endif
     vec3 n = gs.normal;
     float len = length(n);

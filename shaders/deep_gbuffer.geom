@@ -17,6 +17,7 @@ out vec3 gsPrevWorld;      // the surface's position last frame (per-object moti
 flat in uint vsObjectId[];
 flat out uint gsObjectId;
 #endif
+invariant gl_Position;  // the same depth in every variant: layer 2's shading tests EQUAL against its depth prepass
 uniform int uFirstLayer;  // 0, or 1 for the second pass of depth peeling
 uniform int uLayerCount;  // 1 or 2
 void main() {

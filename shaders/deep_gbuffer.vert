@@ -31,6 +31,9 @@ out vec3 vsPrevWorld;     // where this vertex was last frame (its object's prev
 #ifdef OBJECT_IDS
 flat out uint vsObjectId; // node index + 1
 #endif
+#ifdef LAYERED
+invariant gl_Position;  // the same depth in every variant: layer 2's shading tests EQUAL against its depth prepass
+#endif
 void main() {
     SceneObject o = uObjects[aObject];
     vs.world = (o.model * vec4(aPosition, 1.0)).xyz;

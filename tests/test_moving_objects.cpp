@@ -66,7 +66,8 @@ void slidePrediction(bool objectMotion, int frames, double& mean, double& worst)
     auto predicted = rendererFor(b.scene, kW, kH, "view");
     Settings sp = settingsFor(*b.scene, objectMotion, GBufferGeneration::Predicted),
              sd = settingsFor(*b.scene, objectMotion, GBufferGeneration::DepthPeel);
-    sp.indirect = sd.indirect = false;  // the G-buffer alone
+    sp.indirect = sd.indirect = false;  // the G-buffer alone, with the AO as the reader that makes layer 2 be built
+    sp.aoEnabled = sd.aoEnabled = true;
     mean = worst = 0.0;
     for (int f = 0; f < frames; ++f) {
         b.place(f);

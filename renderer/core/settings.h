@@ -9,6 +9,7 @@ namespace deepgi {
 // The choices of the DEEPGI_ENUM settings, in the order of their choice strings in settings.def.
 enum class GBufferGeneration { Predicted, DepthPeel };
 enum class LayerRouting { Auto, Vertex, Geometry };
+enum class Layer2Prepass { Auto, On, Off };
 enum class FilterOrder { BlurFirst, TemporalFirst };
 enum class RadiosityResolution { Auto, Full, Half };
 enum class RadiosityInterleave { Auto, Off, Two, Four };

@@ -51,7 +51,8 @@ void DeepGBufferPass::writeMaterialTextures(const PipelineConfig& c, PassTable& 
                  "The occlusion texture (x strength) of both layers: scales indirect light only (1 = none)"});
 }
 
-void DeepGBufferPass::drawScene(FrameContext& ctx, int firstLayer, int layerCount, bool peel, const char* peelDepth) {
+void DeepGBufferPass::drawScene(FrameContext& ctx, int firstLayer, int layerCount, bool peel, const char* peelDepth,
+                                Layer2Draw layer2) {
     const GBufferSettings& g = ctx.settings;
     for (bool masked : {false, true}) {
         if (masked ? !ctx.scene.hasMasked() : !ctx.scene.hasOpaque()) continue;
@@ -66,6 +67,8 @@ void DeepGBufferPass::drawScene(FrameContext& ctx, int firstLayer, int layerCoun
         // Layer 1 alone: no discard in the shader, so llvmpipe tests depth before shading (early z) and shades
         // each pixel's front surface only, not every surface behind it.
         if (firstLayer == 0 && layerCount == 1) defs.push_back("LAYER1_ONLY");
+        if (layer2 == Layer2Draw::DepthPrepass) defs.push_back("LAYER2_PREPASS");
+        if (layer2 == Layer2Draw::ShadeEqual) defs.push_back("LAYER2_SHADE");
         // gbuffer.layer_routing: instance i of each draw goes to layer firstLayer + i from the vertex stage (no
         // geometry shader: on llvmpipe it cost the heavy scene's pass 1.4 x), or the geometry shader emits it per layer.
         const bool layered = ctx.config.layeredVertex;
@@ -84,6 +87,24 @@ void DeepGBufferPass::drawScene(FrameContext& ctx, int firstLayer, int layerCoun
             return prog.id();
         }, masked, true, layered ? layerCount : 1);
     }
+}
+
+// Layer 2 alone. With gbuffer.layer2_prepass, its tests (separation, alpha) run in a depth-only draw, and the shading
+// draw tests depth EQUAL with no discard: llvmpipe then tests depth before shading and shades one fragment per pixel,
+// where a shader that may discard is tested after it, every fragment behind layer 1 shaded.
+void DeepGBufferPass::drawLayer2(FrameContext& ctx, bool peel, const char* peelDepth) {
+    if (!ctx.config.layer2Prepass) {
+        drawScene(ctx, 1, 1, peel, peelDepth);
+        return;
+    }
+    glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+    drawScene(ctx, 1, 1, peel, peelDepth, Layer2Draw::DepthPrepass);
+    glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+    glDepthFunc(GL_EQUAL);
+    glDepthMask(GL_FALSE);
+    drawScene(ctx, 1, 1, peel, peelDepth, Layer2Draw::ShadeEqual);
+    glDepthFunc(GL_LESS);
+    glDepthMask(GL_TRUE);
 }
 
 void DeepGBufferPass::execute(FrameContext& ctx) {
@@ -124,9 +145,13 @@ void DeepGBufferPass::execute(FrameContext& ctx) {
     if (!ctx.config.layer2) {
         drawScene(ctx, 0, 1, false, "Last Depth");
         geometryPasses_ = 1;
-    } else if (!peel) {
+    } else if (!peel && !ctx.config.layer2Prepass) {
         drawScene(ctx, 0, 2, false, "Last Depth");  // one geometry pass, both layers
         geometryPasses_ = 1;
+    } else if (!peel) {
+        drawScene(ctx, 0, 1, false, "Last Depth");  // layer 1 with early z, then layer 2 predicted as above
+        drawLayer2(ctx, false, "Last Depth");
+        geometryPasses_ = 3;
     } else {
         drawScene(ctx, 0, 1, false, "Last Depth");
         // Exact layer 1 for the peel: a separate copy in depth_peel mode; Last Depth on a history reset (its
@@ -135,8 +160,8 @@ void DeepGBufferPass::execute(FrameContext& ctx) {
         GLuint peelTex = ctx.texture(peelName);
         glCopyImageSubData(depth, GL_TEXTURE_2D_ARRAY, 0, 0, 0, 0, peelTex, GL_TEXTURE_2D, 0, 0, 0, 0, w, h, 1);
         glBindFramebuffer(GL_FRAMEBUFFER, fbo);
-        drawScene(ctx, 1, 1, true, peelName);
-        geometryPasses_ = 2;
+        drawLayer2(ctx, true, peelName);
+        geometryPasses_ = ctx.config.layer2Prepass ? 3 : 2;
     }
     glDisable(GL_DEPTH_TEST);
 }

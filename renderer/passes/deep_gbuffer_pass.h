@@ -11,7 +11,7 @@ public:
     const char* name() const override { return "Deep G-buffer"; }
     void table(const PipelineConfig& c, PassTable& t) const override;
     void execute(FrameContext& ctx) override;
-    // Number of geometry passes in the last execute (1 predicted, 2 peeled).
+    // Number of geometry passes in the last execute (1 predicted, 2 peeled; one more with the layer-2 depth prepass).
     int lastGeometryPasses() const { return geometryPasses_; }
 
 private:
@@ -23,10 +23,14 @@ private:
         gl::Uniform<int> layerCount{*this, "uLayerCount"};
         gl::OptionalUniform<float> minSeparation{*this, "uMinSeparation"};  // not in LAYER1_ONLY
         gl::OptionalUniform<bool> peel{*this, "uPeel"};
-        gl::Uniform<bool> diffuseOnly{*this, "uDiffuseOnly"};
+        gl::OptionalUniform<bool> diffuseOnly{*this, "uDiffuseOnly"};  // not in LAYER2_PREPASS
     };
     void writeMaterialTextures(const PipelineConfig& c, PassTable& t) const;
-    void drawScene(FrameContext& ctx, int firstLayer, int layerCount, bool peel, const char* peelDepth);
+    // How a draw treats layer 2: tested and shaded at once (discard), or its depth prepass, or its shading after it.
+    enum class Layer2Draw { Whole, DepthPrepass, ShadeEqual };
+    void drawScene(FrameContext& ctx, int firstLayer, int layerCount, bool peel, const char* peelDepth,
+                   Layer2Draw layer2 = Layer2Draw::Whole);
+    void drawLayer2(FrameContext& ctx, bool peel, const char* peelDepth);
     gl::ProgramSlot<Program> program_;
     int geometryPasses_ = 0;
 };

@@ -37,6 +37,7 @@ struct PipelineConfig {
     bool temporal = true;
     bool temporalFirst = false;
     bool depthPeel = false;
+    bool layer2Prepass = false;  // gbuffer.layer2_prepass: layer 2's depth first, then its shading with depth EQUAL
     bool layeredVertex = false;  // gbuffer.layer_routing: gl_Layer from the vertex stage (instanced draws), no geometry shader
     bool ao = false;           // the ambient-occlusion pass runs
     bool probes = false;       // the world-space probe fallback runs (probes.enabled, indirect on)
