@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Issue 13's figures on a GPU through EGL, as one run of the device tool (a machine lent for minutes, not Debian 12,
-# no package registry). Run from the repository root with, in the ignored folder .dev:
+# no package registry). Run from the repository root with, in the ignored folder .dev (tools/device/prepare.sh makes it):
 #   deepgi.tar.xz              tools/device/pack.py .dev/deepgi.tar.xz (the binary and the libraries it loads)
 #   scenes.tar.xz              CrytekSponza (its 3-channel textures as JPEG q92, to fit the transfer) and CornellBox
 #   atrium_640_llvmpipe.exr    deepgi render --size 640x360 --frames 24 --set radiosity.resolution=half
