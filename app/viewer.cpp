@@ -125,8 +125,7 @@ bool Viewer::init() {
     if (!opt_.shaderDir.empty()) ro.shaderDir = opt_.shaderDir;
     ro.sceneEditing = true;  // click-select, the outline and G/R/S read Object ID and Motion
     // GPU timer queries where they are reliable; llvmpipe's miss vertex work and bin draws (platform.md).
-    const char* glRenderer = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
-    const bool software = glRenderer && (std::strstr(glRenderer, "llvmpipe") || std::strstr(glRenderer, "softpipe"));
+    const bool software = gl::currentContextIsSoftware();
     ro.timing = software ? TimingMode::WallClock : TimingMode::GpuQueries;
     softwareGl_ = software;
     renderer_ = std::make_unique<Renderer>(ro);

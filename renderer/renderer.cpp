@@ -98,6 +98,7 @@ Renderer::Renderer(RendererOptions options, std::vector<std::unique_ptr<RenderPa
         const char* e = reinterpret_cast<const char*>(glGetStringi(GL_EXTENSIONS, GLuint(i)));
         if (e && std::strcmp(e, "GL_ARB_shader_viewport_layer_array") == 0) hasVertexLayer_ = true;
     }
+    softwareGl_ = gl::currentContextIsSoftware();
 }
 
 Renderer::~Renderer() = default;
@@ -191,10 +192,9 @@ PipelineConfig Renderer::makeConfig(const Settings& s) const {
     c.blur = s.blur;
     c.temporal = s.temporal;
     c.temporalFirst = s.filterOrder == FilterOrder::TemporalFirst && s.temporal;
-    c.depthPeel = s.generation == GBufferGeneration::DepthPeel && s.layer2;
+    c.depthPeel = s.generation == GBufferGeneration::DepthPeel && c.layer2;
     c.layeredVertex = s.layerRouting != LayerRouting::Geometry && hasVertexLayer_;
-    const char* glRenderer = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
-    const bool software = glRenderer && (std::strstr(glRenderer, "llvmpipe") || std::strstr(glRenderer, "softpipe"));
+    const bool software = softwareGl_;
     // The prepass pays two more geometry passes to shade each pixel once: worth it while fragments cost more than
     // vertices (on llvmpipe: the atrium, Sponza; not the heavy scene's 4.6 triangles per pixel at 640x360).
     const bool fragmentBound = double(scene_->triangleCount()) < 2.0 * double(frameWidth()) * double(frameHeight());

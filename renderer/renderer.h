@@ -183,6 +183,7 @@ private:
     int width_ = 0, height_ = 0;
     int guard_ = 0;  // guard band in pixels on each side (a change restarts the history, as a resize does)
     Camera camera_, prevCamera_;
+    bool softwareGl_ = false;      // llvmpipe/softpipe: the platform-dependent auto settings follow it
     bool hasVertexLayer_ = false;  // GL_ARB_shader_viewport_layer_array: gbuffer.layer_routing can be vertex
     bool historyValid_ = false;
     bool sceneMoved_ = false;  // sceneChanged(Transforms) since setScene: objects move, Motion is written

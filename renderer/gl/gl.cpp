@@ -1,9 +1,16 @@
 #include "renderer/gl/gl.h"
 
+#include <cstring>
+
 #include <cstdio>
 #include <stdexcept>
 
 namespace deepgi::gl {
+
+bool currentContextIsSoftware() {
+    const char* r = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
+    return r && (std::strstr(r, "llvmpipe") || std::strstr(r, "softpipe"));
+}
 
 void deleteTexture(GLuint id) { glDeleteTextures(1, &id); }
 void deleteBuffer(GLuint id) { glDeleteBuffers(1, &id); }

@@ -29,6 +29,10 @@ private:
     GLuint id_ = 0;
 };
 
+// Whether the current context renders in software (llvmpipe, softpipe): its timer queries miss vertex work, it tests
+// a discarding shader's depth after shading, and the defaults that depend on the platform follow it.
+bool currentContextIsSoftware();
+
 void deleteTexture(GLuint id);
 void deleteBuffer(GLuint id);
 void deleteFramebuffer(GLuint id);

@@ -1,4 +1,5 @@
 #include "renderer/gl/headless_context.h"
+#include "renderer/gl/gl.h"
 
 #include <glad/gl.h>  // before osmesa.h: it defines what osmesa.h expects
 #include <GL/osmesa.h>
@@ -36,9 +37,6 @@ std::string HeadlessContext::renderer() const {
     return s ? reinterpret_cast<const char*>(s) : "";
 }
 
-bool HeadlessContext::isSoftware() const {
-    std::string r = renderer();
-    return r.find("llvmpipe") != std::string::npos || r.find("softpipe") != std::string::npos;
-}
+bool HeadlessContext::isSoftware() const { return currentContextIsSoftware(); }
 
 }  // namespace deepgi::gl

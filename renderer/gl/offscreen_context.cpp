@@ -1,5 +1,6 @@
 #include "renderer/gl/offscreen_context.h"
 
+#include "renderer/gl/gl.h"
 #include "renderer/gl/headless_context.h"
 
 #include <glad/gl.h>
@@ -127,9 +128,6 @@ std::string OffscreenContext::renderer() const {
 
 std::string OffscreenContext::description() const { return description_; }
 
-bool OffscreenContext::isSoftware() const {
-    const std::string r = renderer();
-    return r.find("llvmpipe") != std::string::npos || r.find("softpipe") != std::string::npos;
-}
+bool OffscreenContext::isSoftware() const { return currentContextIsSoftware(); }
 
 }  // namespace deepgi::gl
