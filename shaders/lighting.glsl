@@ -14,8 +14,12 @@ const int MAX_LIGHTS = 16384;  // kMaxGpuLights (renderer/scene/lighting.h); the
 const int MAX_BLOCK_LIGHTS = 32;
 layout(std140, binding = 3) uniform LightBlock { GpuLight uLightBlock[MAX_BLOCK_LIGHTS]; };
 GpuLight lightAt(int i) {
+#ifdef DEEPGI_BLOCK_LIGHTS_ONLY  // every light is in the block: llvmpipe would still load the storage buffer per lane
+    return uLightBlock[i];
+#else
     if (i < MAX_BLOCK_LIGHTS) return uLightBlock[i];
     return uLights[i];
+#endif
 }
 uniform int uLightCount;
 uniform float uShadowBias;  // in shadow-map texels

@@ -92,34 +92,46 @@ double processCpuMs() {
     return double(t.tv_sec) * 1e3 + double(t.tv_nsec) * 1e-6;
 }
 
-// One ray's contribution to every irradiance texel: cosine-weighted radiance and the weight (SoA, vectorisable).
+// Eight floats as one GCC/Clang vector (two SSE or one AVX register): the loops below are written with it because
+// -O2 left them scalar. The operations are the scalar ones in the same order, so the sums are the same bits.
+// Float8At reads and writes eight floats of an array in place (unaligned, aliasing the floats).
+typedef float Float8 __attribute__((vector_size(32)));
+typedef float Float8At __attribute__((vector_size(32), aligned(4), may_alias));
+const Float8At& at8(const float* p) { return *reinterpret_cast<const Float8At*>(p); }
+Float8At& at8(float* p) { return *reinterpret_cast<Float8At*>(p); }
+
+// One ray's contribution to every irradiance texel: cosine-weighted radiance and the weight (SoA; n is a multiple
+// of 8).
+__attribute__((target_clones("avx2", "default")))
 void accumulateIrradiance(size_t n, const float* x, const float* y, const float* z, const glm::vec3& d,
                           const glm::vec3& L, float* __restrict r, float* __restrict g, float* __restrict b,
                           float* __restrict w) {
-    for (size_t j = 0; j < n; j += 8)  // n is a multiple of 8: fixed inner trip count, which -O2 vectorises
-        for (size_t i = j; i < j + 8; ++i) {
-            const float c = std::max(0.0f, x[i] * d.x + y[i] * d.y + z[i] * d.z);
-            r[i] += c * L.x;
-            g[i] += c * L.y;
-            b[i] += c * L.z;
-            w[i] += c;
-        }
+    for (size_t i = 0; i < n; i += 8) {
+        Float8 c = at8(x + i) * d.x + at8(y + i) * d.y + at8(z + i) * d.z;
+        c = c > 0.0f ? c : Float8{};  // std::max(0, c), NaN to 0 as well
+        at8(r + i) += c * L.x;
+        at8(g + i) += c * L.y;
+        at8(b + i) += c * L.z;
+        at8(w + i) += c;
+    }
 }
 
-// One ray's distance into the depth texels of its lobe with weight cos^50 (cut at cos 0.8: no denormals,
-// 0.8^50 = 1.4e-5); `texels` holds every texel that can pass the cut, so the sums equal a loop over the whole map.
-void accumulateDepth(const uint16_t* texels, const uint16_t* texelsEnd, const float* x, const float* y, const float* z,
+// One ray's distance into the depth texels of its lobe with weight cos^50, cut at cos 0.8 (no denormals,
+// 0.8^50 = 1.4e-5). `blocks` holds the first texel of every block of 8 that has a texel able to pass the cut; the
+// others in a block are below it and add exactly 0, so the sums equal a loop over the whole map.
+__attribute__((target_clones("avx2", "default")))
+void accumulateDepth(const uint16_t* blocks, const uint16_t* blocksEnd, const float* x, const float* y, const float* z,
                      const glm::vec3& d, float dist, float* __restrict m1, float* __restrict m2, float* __restrict w) {
     static_assert(kDepthSharpness == 50.0f, "the power below is c^32 * c^16 * c^2");
-    for (const uint16_t* t = texels; t != texelsEnd; ++t) {
-        const size_t i = *t;
-        const float dot = x[i] * d.x + y[i] * d.y + z[i] * d.z;
-        if (!(dot > kDepthLobeCutoff)) continue;
-        const float c2 = dot * dot, c4 = c2 * c2, c8 = c4 * c4, c16 = c8 * c8, c32 = c16 * c16;
-        const float wt = c32 * c16 * c2;
-        m1[i] += wt * dist;
-        m2[i] += wt * dist * dist;
-        w[i] += wt;
+    for (const uint16_t* block = blocks; block != blocksEnd; ++block) {
+        const size_t i = *block;
+        const Float8 dot = at8(x + i) * d.x + at8(y + i) * d.y + at8(z + i) * d.z;
+        const Float8 c = dot > kDepthLobeCutoff ? dot : Float8{};
+        const Float8 c2 = c * c, c4 = c2 * c2, c8 = c4 * c4, c16 = c8 * c8, c32 = c16 * c16;
+        const Float8 wt = c32 * c16 * c2;
+        at8(m1 + i) += wt * dist;
+        at8(m2 + i) += wt * dist * dist;
+        at8(w + i) += wt;
     }
 }
 
@@ -229,13 +241,14 @@ ProbeVolume::ProbeVolume(const Scene& scene, const Settings& s, uint64_t seed, i
             }
         const float reach = std::cos(std::min(std::acos(kDepthLobeCutoff) + extent + 1e-3f, kPi));
         depthLobeStart_.assign(1, 0u);
-        depthLobeTexels_.clear();
+        depthLobeBlocks_.clear();
         for (size_t t = 0; t < size_t(n) * n; ++t) {
             const glm::vec3 a(depthDirs_.x[t], depthDirs_.y[t], depthDirs_.z[t]);
             for (size_t u = 0; u < size_t(n) * n; ++u)
-                if (glm::dot(a, glm::vec3(depthDirs_.x[u], depthDirs_.y[u], depthDirs_.z[u])) >= reach)
-                    depthLobeTexels_.push_back(uint16_t(u));
-            depthLobeStart_.push_back(uint32_t(depthLobeTexels_.size()));
+                if (glm::dot(a, glm::vec3(depthDirs_.x[u], depthDirs_.y[u], depthDirs_.z[u])) >= reach &&
+                    (depthLobeBlocks_.size() == depthLobeStart_.back() || depthLobeBlocks_.back() != u / 8 * 8))
+                    depthLobeBlocks_.push_back(uint16_t(u / 8 * 8));  // u ascends: each block once
+            depthLobeStart_.push_back(uint32_t(depthLobeBlocks_.size()));
         }
     }
     for (TexelDirections* dirs : {&irrDirs_, &depthDirs_}) {
@@ -557,7 +570,7 @@ ProbeUpdateStats ProbeVolume::update(const Settings& s) {
                 accumulateIrradiance(irrTexels, irrDirs_.x.data(), irrDirs_.y.data(), irrDirs_.z.data(), d, radiance,
                                      irr, irr + irrTexels, irr + 2 * irrTexels, irr + 3 * irrTexels);
             const size_t lobe = octTexel(d, depthN_);
-            accumulateDepth(&depthLobeTexels_[depthLobeStart_[lobe]], &depthLobeTexels_[0] + depthLobeStart_[lobe + 1],
+            accumulateDepth(&depthLobeBlocks_[0] + depthLobeStart_[lobe], &depthLobeBlocks_[0] + depthLobeStart_[lobe + 1],
                             depthDirs_.x.data(), depthDirs_.y.data(), depthDirs_.z.data(), d, distance, dep,
                             dep + depthTexels, dep + 2 * depthTexels);
         }

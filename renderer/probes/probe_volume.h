@@ -256,10 +256,10 @@ private:
         size_t size() const { return x.size(); }
     };
     TexelDirections irrDirs_, depthDirs_;
-    // Per depth texel t, the texels within the depth lobe's reach of any direction inside t (the cos 0.8 cutoff plus
-    // the texel's own extent): a ray updates only those of the texel it leaves through, not the whole map.
-    std::vector<uint32_t> depthLobeStart_;  // depthN_^2 + 1 offsets into depthLobeTexels_
-    std::vector<uint16_t> depthLobeTexels_;
+    // Per depth texel t, the blocks of 8 texels holding one within the depth lobe's reach of any direction inside t
+    // (the cos 0.8 cutoff plus the texel's own extent): a ray updates only those of the texel it leaves through.
+    std::vector<uint32_t> depthLobeStart_;  // depthN_^2 + 1 offsets into depthLobeBlocks_
+    std::vector<uint16_t> depthLobeBlocks_;  // each block's first texel (a multiple of 8)
     int dirtyRowLo_ = 0, dirtyRowHi_ = 0;         // tile rows [lo, hi) changed since the last upload
     bool uploadedOnce_ = false;
     uint64_t placementRays_ = 0;
