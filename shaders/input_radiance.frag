@@ -50,6 +50,10 @@ void main() {
     E += Esky;
 #endif
     oDirect = vec4(sanitize(albedo / PI * E + Ls), 1.0);  // radiance: below the clamp wherever the final image is
+#ifdef DEEPGI_DIRECT_ONLY  // layer 1 at full resolution where the gather reads its radiance only at a coarser level
+    oRadiance = vec3(0.0);
+    return;
+#endif
     vec3 Eind = vec3(0.0);
 #ifdef DEEPGI_HISTORY_FEEDBACK  // layer 1 with a history: last frame's indirect light (multi-bounce)
     Eind = (1.0 - uDamping) * texelFetch(uReprojected, radiosityPixelOfScreen(pix), 0).rgb;
@@ -63,5 +67,6 @@ void main() {
     E += Eind;
     vec3 B = albedo / PI * E;
     if (uHasEmission != 0) B += texelFetch(uEmission, ivec3(pix, uLayer), 0).rgb;
-    oRadiance = sanitizeR11G11B10(B, gl_FragCoord.xy);
+    // Layer 1's dither at its level-0 pixel at any level: its coarse texels are the bits a full-resolution draw wrote.
+    oRadiance = sanitizeR11G11B10(B, uLayer == 0 ? vec2(pix) + 0.5 : gl_FragCoord.xy);
 }

@@ -4,6 +4,7 @@
 #include "renderer/scene/lighting.h"
 
 #include <algorithm>
+#include <array>
 
 namespace deepgi {
 
@@ -27,8 +28,8 @@ void InputRadiancePass::table(const PipelineConfig& c, PassTable& t) const {
     if (c.indirect || c.seedComposite)
         t.write({"Input Radiance", {"Input Radiance 1", "Input Radiance 2"}, GL_R11F_G11F_B10F, GL_TEXTURE_2D_ARRAY,
                  SizeRule::screen(), 6, MemoryGroup::Radiosity, Visualize::Radiance,
-                 "Outgoing radiance of both layers (what the gather collects); layer 2 from the gather's finest tap "
-                 "level (radiosity.min_mip) up, its finer levels 0"},
+                 "Outgoing radiance of both layers (what the gather collects), from the gather's finest tap level "
+                 "(radiosity.min_mip) up, the finer levels 0 (layer 1 from level 0 with the seed composite)"},
                 "uRadiance");
     // Half floats: the direct light keeps 11 bits of precision (R11G11B10's 6 would put 1.5 % steps in it); as
     // outgoing radiance it is bounded by the same clamp as the final image (an irradiance could pass 65504).
@@ -36,6 +37,27 @@ void InputRadiancePass::table(const PipelineConfig& c, PassTable& t) const {
              MemoryGroup::Extra, Visualize::Radiance,
              "Outgoing direct radiance of layer 1 (albedo / pi x the shadowed direct irradiance from every light, plus "
              "the GGX specular of Specular), evaluated once; the composite adds emission and indirect light"});
+}
+
+// The levels below the coarse one that nothing writes (radiance of the layers evaluated at the coarse level; depth
+// and normal from level 1) hold a defined value for the inspector and the dumps: 0, and the far plane for depth.
+// Once per allocation of the textures and layout of the levels: no pass writes them in between.
+void InputRadiancePass::clearUnbuiltLevels(const FrameContext& ctx, GLuint radiance, GLuint depth, GLuint normal,
+                                           int coarse, bool layer1Coarse, int layers) {
+    const std::array<uint64_t, 4> key{ctx.textures.generation(), uint64_t(coarse), uint64_t(layer1Coarse), uint64_t(layers)};
+    if (key == clearedKey_) return;
+    clearedKey_ = key;
+    const float far = 1.0f;
+    GLint arrayLayers = 1;  // depth and normal: both layers whether or not layer 2 is drawn
+    glGetTextureLevelParameteriv(depth, 0, GL_TEXTURE_DEPTH, &arrayLayers);
+    for (int level = 0; level < coarse; ++level) {
+        const int w = std::max(1, ctx.width >> level), h = std::max(1, ctx.height >> level);
+        const int first = layer1Coarse ? 0 : 1;
+        if (layers > first) glClearTexSubImage(radiance, level, 0, 0, first, w, h, layers - first, GL_RGB, GL_FLOAT, nullptr);
+        if (level == 0 || !ctx.config.indirect) continue;
+        glClearTexSubImage(depth, level, 0, 0, 0, w, h, arrayLayers, GL_DEPTH_COMPONENT, GL_FLOAT, &far);
+        glClearTexSubImage(normal, level, 0, 0, 0, w, h, arrayLayers, GL_RG, GL_FLOAT, nullptr);
+    }
 }
 
 void InputRadiancePass::execute(FrameContext& ctx) {
@@ -63,55 +85,76 @@ void InputRadiancePass::execute(FrameContext& ctx) {
         ctx.bindSamplers(p);
         return p;
     };
-    // No layer-2 work when layer 2 is off, nor without indirect light (layer 1's direct light only). Layer 2 goes
-    // straight to the gather's finest level (none finer is read: the seed composite reads layer 1 alone).
+    // No layer-2 work when layer 2 is off, nor without indirect light (layer 1's direct light only). The gather reads
+    // radiance from its finest tap level up (radiosity.min_mip, `coarse`): layer 2's is evaluated there, and so is
+    // layer 1's unless the seed composite reads its level 0.
     const int layers = radianceOut && ctx.config.layer2 ? 2 : 1;
     const int radianceLevels = radianceOut ? ctx.entry("Input Radiance").decl.levels : 1;
-    const int layer2Level = ctx.config.indirect ? std::clamp(s.minMip, 0, std::min(5, radianceLevels - 1)) : 0;
-    if (layers == 2)
-        for (int level = 0; level < layer2Level; ++level)  // never read: a defined 0 for the inspector and dumps
-            glClearTexSubImage(radiance, level, 0, 0, 1, std::max(1, ctx.width >> level), std::max(1, ctx.height >> level), 1,
-                               GL_RGB, GL_FLOAT, nullptr);
-    for (int layer = 0; layer < layers; ++layer) {
-        const int level = layer == 1 ? layer2Level : 0;
-        RadianceProgram& prog = program(layer);
-        prog.layer.set(layer);
-        prog.sourceLevel.set(level);
-        GLuint fbo = !radianceOut ? ctx.fbos.get({{GL_COLOR_ATTACHMENT1, direct}}, "direct irradiance")
-                     : layer == 0 ? ctx.fbos.get({{GL_COLOR_ATTACHMENT0, radiance, 0, layer}, {GL_COLOR_ATTACHMENT1, direct}}, "input radiance 1")
-                                  : ctx.fbos.get({{GL_COLOR_ATTACHMENT0, radiance, level, layer}}, "input radiance");
-        ctx.drawFullscreen(prog.id(), fbo, std::max(1, ctx.width >> level), std::max(1, ctx.height >> level));
+    const int coarse = ctx.config.indirect ? std::clamp(s.minMip, 0, std::min(5, radianceLevels - 1)) : 0;
+    const bool layer1Coarse = coarse > 0 && !ctx.config.seedComposite;
+    const GLuint depth = ctx.texture("Depth"), normal = ctx.texture("Normal");
+    if (radianceOut) clearUnbuiltLevels(ctx, radiance, depth, normal, coarse, layer1Coarse, layers);
+    // Layer 1 at full resolution: Direct Radiance alone where its radiance is not needed at level 0.
+    if (!radianceOut || layer1Coarse) {
+        std::vector<std::string> d = defines;
+        d.push_back("DEEPGI_DIRECT_ONLY");
+        DirectProgram& prog = direct_.get(ctx.shaders, {"fullscreen.vert", "", "input_radiance.frag", "", d});
+        prog.lighting.set(ctx);
+        prog.layer.set(0);
+        prog.sourceLevel.set(0);
+        ctx.bindSamplers(prog);
+        ctx.drawFullscreen(prog.id(), ctx.fbos.get({{GL_COLOR_ATTACHMENT1, direct}}, "direct irradiance"), ctx.width, ctx.height);
     }
+    if (radianceOut)
+        for (int layer = 0; layer < layers; ++layer) {
+            const int level = layer == 1 || layer1Coarse ? coarse : 0;
+            RadianceProgram& prog = program(layer);
+            prog.layer.set(layer);
+            prog.sourceLevel.set(level);
+            GLuint fbo = layer == 0 && level == 0
+                             ? ctx.fbos.get({{GL_COLOR_ATTACHMENT0, radiance, 0, 0}, {GL_COLOR_ATTACHMENT1, direct}}, "input radiance 1")
+                             : ctx.fbos.get({{GL_COLOR_ATTACHMENT0, radiance, level, layer}}, "input radiance");
+            ctx.drawFullscreen(prog.id(), fbo, std::max(1, ctx.width >> level), std::max(1, ctx.height >> level));
+        }
     if (!ctx.config.indirect) return;
 
-    // Mip chains for the gather. Reading level k-1 while writing level k of the same texture: restrict the
-    // sampled range to level k-1 (base = max = k-1) so there is no feedback loop.
-    const GLuint depth = ctx.texture("Depth"), normal = ctx.texture("Normal");
+    // Mip chains for the gather from the coarse level up: that level straight from level 0 (the texel the chain of
+    // levels would pick), each coarser one from the one before. Reading level k while writing another level of the
+    // same texture: the sampled range is restricted to level k (base = max = k), so there is no feedback loop.
     const int levels = std::min({ctx.entry("Depth").decl.levels, ctx.entry("Normal").decl.levels,
                                  ctx.entry("Input Radiance").decl.levels});
-    MipProgram& mipProg = mips_.get(ctx.shaders, {"fullscreen.vert", "", "gather_mips.frag", "", {}});
-    mipProg.srcLevel.set(0);
-    ctx.bindSamplers(mipProg);
+    MipProgram& chainProg = mips_.get(ctx.shaders, {"fullscreen.vert", "", "gather_mips.frag", "", {}});
+    MipFromBaseProgram& baseProg = mipsFromBase_.get(ctx.shaders, {"fullscreen.vert", "", "gather_mips.frag", "", {"MIP_FROM_BASE"}});
+    for (MipProgram* p : {static_cast<MipProgram*>(&chainProg), static_cast<MipProgram*>(&baseProg)}) {
+        p->srcLevel.set(0);
+        ctx.bindSamplers(*p);
+    }
     glEnable(GL_DEPTH_TEST);
     glDepthFunc(GL_ALWAYS);
     glDepthMask(GL_TRUE);
-    for (int level = 1; level < levels; ++level) {
+    for (int level = std::max(1, coarse); level < levels; ++level) {
+        const bool fromBase = level == coarse;
+        const int src = fromBase ? 0 : level - 1;
         for (GLuint t : {depth, normal, radiance}) {
-            glTextureParameteri(t, GL_TEXTURE_BASE_LEVEL, level - 1);
-            glTextureParameteri(t, GL_TEXTURE_MAX_LEVEL, level - 1);
+            glTextureParameteri(t, GL_TEXTURE_BASE_LEVEL, src);
+            glTextureParameteri(t, GL_TEXTURE_MAX_LEVEL, src);
         }
+        MipProgram& prog = fromBase ? baseProg : chainProg;  // uSrcLevel 0: a fetch's level counts from the base level
+        if (fromBase) baseProg.level.set(level);
         const int w = std::max(1, ctx.width >> level), h = std::max(1, ctx.height >> level);
         for (int layer = 0; layer < layers; ++layer) {
-            mipProg.layer.set(layer);
-            // Layer 2's radiance exists from layer2Level up: the levels up to it are not built from it.
-            GLuint fbo = layer == 1 && level <= layer2Level
-                             ? ctx.fbos.get({{GL_DEPTH_ATTACHMENT, depth, level, layer}, {GL_COLOR_ATTACHMENT0, normal, level, layer}}, "gather mips")
-                             : ctx.fbos.get({{GL_DEPTH_ATTACHMENT, depth, level, layer},
-                                             {GL_COLOR_ATTACHMENT0, normal, level, layer},
-                                             {GL_COLOR_ATTACHMENT1, radiance, level, layer}}, "gather mips");
+            prog.layer.set(layer);
+            // At the coarse level the radiance was evaluated (layer 2; layer 1 unless the seed composite needs its
+            // level 0): only depth and normal are built there.
+            const bool withRadiance = !fromBase || (layer == 0 && !layer1Coarse);
+            GLuint fbo = withRadiance ? ctx.fbos.get({{GL_DEPTH_ATTACHMENT, depth, level, layer},
+                                                      {GL_COLOR_ATTACHMENT0, normal, level, layer},
+                                                      {GL_COLOR_ATTACHMENT1, radiance, level, layer}}, "gather mips")
+                                      : ctx.fbos.get({{GL_DEPTH_ATTACHMENT, depth, level, layer},
+                                                      {GL_COLOR_ATTACHMENT0, normal, level, layer}}, "gather mips");
             glBindFramebuffer(GL_FRAMEBUFFER, fbo);
             glViewport(0, 0, w, h);
-            glUseProgram(mipProg.id());
+            glUseProgram(prog.id());
             glBindVertexArray(ctx.fullscreenVao);
             glDrawArrays(GL_TRIANGLES, 0, 3);
         }
@@ -120,8 +163,6 @@ void InputRadiancePass::execute(FrameContext& ctx) {
         glTextureParameteri(t, GL_TEXTURE_BASE_LEVEL, 0);
         glTextureParameteri(t, GL_TEXTURE_MAX_LEVEL, levels - 1);
     }
-    glDepthFunc(GL_LESS);
-    glDisable(GL_DEPTH_TEST);
 }
 
 }  // namespace deepgi
