@@ -46,6 +46,7 @@ public:
     std::string description(const std::string& name) override;
     ui::ErrorView errorView(const std::string& a, const std::string& b, int level, ui::CompareMode mode, float scale) override;
     ui::EmptyMask emptyMask(const std::string& name, int level) override;
+    int dataLevel(const std::string& name) override;
 
     // ScriptHost (ui/script.h)
     bool scriptReady() override { return renderer_ && renderer_->frameIndex() > 0; }

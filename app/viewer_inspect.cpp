@@ -51,6 +51,17 @@ std::string Viewer::description(const std::string& name) {
     return e->decl.description;
 }
 
+int Viewer::dataLevel(const std::string& name) {
+    const TextureRegistry::Entry* e = nullptr;
+    int layer = 0;
+    if (!renderer_->textures().findLayer(name, &e, &layer)) return 0;
+    const PipelineConfig& c = renderer_->config();
+    if (e->decl.name == "Input Radiance") return layer == 1 || !c.seedComposite ? c.tapLevel : 0;
+    static const char* const gbuffer[] = {"Depth", "Normal", "Albedo", "Emission", "Specular", "Occlusion", "Object ID", "Motion"};
+    const bool layer2GBuffer = layer == 1 && std::find(std::begin(gbuffer), std::end(gbuffer), e->decl.name) != std::end(gbuffer);
+    return std::min(layer2GBuffer ? renderer_->lastLayer2Level() : 0, e->decl.levels - 1);
+}
+
 FloatImage Viewer::readSource(const std::string& name, int level) {
     if (name == ui::kReferenceName) return refImage_;
     if (name == ui::kPathTraceName) return ptSnap_.final;
@@ -64,13 +75,15 @@ std::vector<uint8_t> Viewer::surfaceMask(const std::string& name, int level, boo
     int layer = 0;
     // Per-layer screen buffers (G-buffer, radiosity, AO): a texel is empty where its layer's depth is the clear value.
     // The final images are excluded: their sky is the backdrop, which is data.
-    if (level != 0 || !reg.findLayer(name, &e, &layer) || !e->decl.size.screenSized() || endsWith(e->decl.name, "Display") ||
+    if (!reg.findLayer(name, &e, &layer) || !e->decl.size.screenSized() || endsWith(e->decl.name, "Display") ||
         e->decl.name == "Final Radiance" || !reg.has("Depth"))
         return {};
     const std::string depthLayer = endsWith(name, " 2") ? "Depth 2" : "Depth 1";
     const TextureRegistry::Entry& d = reg.entry("Depth");
-    if (d.width != e->width || d.height != e->height || (depthLayer == "Depth 2" && d.decl.layers() < 2)) return {};
-    const FloatImage depth = renderer_->readLayer(depthLayer, 0, false);
+    if (d.width != e->width || d.height != e->height || (depthLayer == "Depth 2" && d.decl.layers() < 2) ||
+        level >= d.decl.levels || level >= e->decl.levels)
+        return {};
+    const FloatImage depth = renderer_->readLayer(depthLayer, level, false);  // the same level's depth
     std::vector<uint8_t> mask(size_t(depth.width) * depth.height);
     for (size_t i = 0; i < mask.size(); ++i) mask[i] = depth.pixels[i * depth.channels] < 1.0f ? 1 : 0;
     *applies = true;
@@ -111,9 +124,9 @@ ui::EmptyMask Viewer::emptyMask(const std::string& name, int level) {
     const std::vector<uint8_t> mask = surfaceMask(name, level, &applies);
     if (!applies) return maskLast_;
     const TextureRegistry::Entry& d = renderer_->textures().entry("Depth");
-    const int w = d.width, h = d.height;
+    const int w = std::max(1, d.width >> level), h = std::max(1, d.height >> level);  // the level's texels
     // The mask is of the image; the overlay spans the texture, guard band included (left clear: not counted).
-    const int g = renderer_->guardTexels(d), mw = w - 2 * g, mh = h - 2 * g;
+    const int g = renderer_->guardTexels(d, level), mw = w - 2 * g, mh = h - 2 * g;
     // Diagonal grey stripes, 6 texels apart: opaque, so an empty texel never reads as data.
     std::vector<unsigned char> px(size_t(w) * h * 4, 0);
     size_t empty = 0;

@@ -72,6 +72,7 @@ void Viewer::scriptInspect(const std::string& a, const std::string& b) {
         throw std::runtime_error("no buffer named '" + b + "' for B");
     inspector_.open = true;
     inspector_.a = a;
+    inspector_.level = dataLevel(a);
     inspector_.zoom = 0.0f;
     if (!b.empty()) inspector_.b = b;
 }

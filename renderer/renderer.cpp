@@ -39,6 +39,7 @@ struct FrameUniformsStd140 {
     glm::mat4 view, proj, viewProj, invViewProj, prevViewProj, prevInvViewProj;
     glm::vec4 cameraPos, cameraForward, prevCameraPos, prevCameraForward, viewport, clip, prevClip, background;
     glm::vec4 radiosityGrid;
+    glm::vec4 tapSample;
 };
 
 // std430 mirror of GpuLight in shaders/lighting.glsl.
@@ -178,6 +179,12 @@ int Renderer::lastGeometryPasses() const {
     return 0;
 }
 
+int Renderer::lastLayer2Level() const {
+    for (const auto& p : passes_)
+        if (auto* g = dynamic_cast<const DeepGBufferPass*>(p.get())) return g->lastLayer2Level();
+    return 0;
+}
+
 PipelineConfig Renderer::makeConfig(const Settings& s) const {
     PipelineConfig c;
     c.layer2 = s.layer2 && (s.indirect || s.aoEnabled);  // only the gather and the AO read layer 2
@@ -201,6 +208,12 @@ PipelineConfig Renderer::makeConfig(const Settings& s) const {
     c.layer2Prepass = c.layer2 && (s.layer2Prepass == Layer2Prepass::On ||
                                    (s.layer2Prepass == Layer2Prepass::Auto && software && fragmentBound));
     c.ao = s.aoEnabled;
+    // The gather's finest tap level: its radiance, depth and normal are evaluated or drawn there, not finer.
+    // A frame too small for that level takes its coarsest (the textures' levels stop at one texel).
+    if (c.indirect) {
+        const int coarsest = int(std::log2(double(std::max({frameWidth(), frameHeight(), 1}))));
+        c.tapLevel = std::clamp(s.minMip, 0, std::min(kMaxTapLevel, coarsest));
+    }
     if (c.indirect) {
         const bool half = s.radiosityResolution == RadiosityResolution::Half ||
                           (s.radiosityResolution == RadiosityResolution::Auto && software);
@@ -331,6 +344,10 @@ void Renderer::uploadFrameUniforms(const Settings& s) {
         int rw = 0, rh = 0;
         config_.radiositySize().resolve(fw, fh, 0, rw, rh);
         u.radiosityGrid = glm::vec4(float(config_.radiosityDownsample), float(rw), float(rh), 0.0f);
+    }
+    {
+        const glm::ivec2 c = tapSampleOffset(config_.tapLevel);
+        u.tapSample = glm::vec4(float(config_.tapLevel), float(c.x), float(c.y), 0.0f);
     }
     glNamedBufferSubData(frameUbo_.id(), 0, sizeof(u), &u);
     glBindBufferBase(GL_UNIFORM_BUFFER, 0, frameUbo_.id());

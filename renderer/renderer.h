@@ -130,6 +130,9 @@ public:
     const ProbeVolume* probeVolume() const { return probes_.get(); }
     uint64_t frameIndex() const { return frameIndex_; }
     int lastGeometryPasses() const;
+    // The level of the G-buffer textures that holds layer 2 after the last frame (DeepGBufferPass::layer2Level):
+    // 0, or the gather's finest tap level L, whose texel T is the ray through level-0 pixel T 2^L + tapSampleOffset(L).
+    int lastLayer2Level() const;
     void setTimingMode(TimingMode m) { options_.timing = m; }
 
     // Reads one registered layer back, row 0 at the top. decode: depth -> distance along the view axis (sky reads

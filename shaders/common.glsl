@@ -15,6 +15,8 @@ layout(std140, binding = 0) uniform FrameUniforms {
     vec4 uPrevClip;       // near, far of last frame
     vec4 uBackground;     // rgb backdrop radiance
     vec4 uRadiosityGrid;  // x = d: radiosity pixel p stands for screen pixel p * d + d / 2; yz = the grid's size
+    vec4 uTapSample;      // x = L, the gather's finest tap level (radiosity.min_mip); yz = the level-0 pixel of each
+                          // 2^L block that level L's texel samples (layer 2 may be drawn there directly)
 };
 
 // Unit direction from P to the camera (perspective) or against the view axis (orthographic).
@@ -131,14 +133,23 @@ vec2 spiralTap(int i, int n, float turns, float phi, float jitter, float rss, ou
     return vec2(cos(theta), sin(theta));
 }
 
-// The full-resolution pixel whose sample mip texel T of level m holds: gather_mips.frag's rotated-grid choice,
-// q = clamp(2p + (p.y & 1, p.x & 1)), followed back to level 0. size = level-0 size. In closed form: each step swaps
-// the low bits, so the offsets alternate (T.y & 1, T.x & 1), (T.x & 1, T.y & 1), ... from the coarsest step, i.e. the
-// bits m-1, m-3, ... take one and m-2, m-4, ... the other; the per-level clamp never binds below a one-texel level
-// (2 floor(s/2) - 1 <= s - 1), so one clamp at the end gives the same pixel (checked for every texel of 6 sizes).
-ivec2 sourcePixel(ivec2 T, int m, ivec2 size) {
+// The level-k texel whose sample texel T of level k + m holds: gather_mips.frag's rotated-grid choice,
+// q = clamp(2p + (p.y & 1, p.x & 1)), followed back m levels. In closed form: each step swaps the low bits, so the
+// offsets alternate (T.y & 1, T.x & 1), (T.x & 1, T.y & 1), ... from the coarsest step, i.e. the bits m-1, m-3, ...
+// take one and m-2, m-4, ... the other; the per-level clamp never binds below a one-texel level
+// (2 floor(s/2) - 1 <= s - 1), so one clamp at the end gives the same texel (checked for every texel of 6 sizes).
+ivec2 rotatedGridSource(ivec2 T, int m) {
     int mask = (1 << m) - 1;
     int first = mask & ((m & 1) != 0 ? 0x55555555 : 0x2AAAAAAA), second = mask & ~first;
     int a = T.x & 1, b = T.y & 1;
-    return min((T << m) + ivec2(b * first + a * second, a * first + b * second), size - 1);
+    return (T << m) + ivec2(b * first + a * second, a * first + b * second);
+}
+// The full-resolution pixel whose sample mip texel T of level m holds (size = level-0 size). Level L = uTapSample.x,
+// the gather's finest, samples one fixed pixel of each 2^L block (uTapSample.yz), so that layer 2 can be rasterised
+// at level L with the very samples layer 1's level L takes from level 0; the coarser levels pick from level L by the
+// rotated grid. Levels finer than L are not built; they keep the rotated grid from level 0.
+ivec2 sourcePixel(ivec2 T, int m, ivec2 size) {
+    int L = int(uTapSample.x);
+    if (m < L) return min(rotatedGridSource(T, m), size - 1);
+    return min((rotatedGridSource(T, m - L) << L) + ivec2(uTapSample.yz), size - 1);
 }

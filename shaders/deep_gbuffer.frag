@@ -32,6 +32,7 @@ uniform sampler2D uLastDepth;     // last frame's layer-1 depth (predicted mode)
 uniform sampler2D uPeelDepth;     // this frame's layer-1 depth (depth-peel mode)
 uniform float uMinSeparation;
 uniform int uPeel;          // 1 = depth peeling
+uniform int uDrawLevel;     // the level of the targets this draw fills: 0, or L when layer 2 is drawn at the tap level
 
 // Albedo (the diffuse lobe: base x (1 - metallic)) and, where the scene needs them, the specular parameters and
 // the occlusion texture's value.
@@ -57,7 +58,9 @@ void main() {
 #if !defined(LAYER1_ONLY) && !defined(LAYER2_SHADE)
     if (gl_Layer == 1) {
         if (uPeel != 0) {
-            float d0 = texelFetch(uPeelDepth, ivec2(gl_FragCoord.xy), 0).r;
+            ivec2 pix = ivec2(gl_FragCoord.xy);  // the level-0 pixel whose ray this fragment samples
+            if (uDrawLevel > 0) pix = (pix << uDrawLevel) + ivec2(uTapSample.yz);
+            float d0 = texelFetch(uPeelDepth, pix, 0).r;
             if (!isSky(d0) && eyeDepthCurrent(gl_FragCoord.z) < eyeDepthCurrent(d0) + uMinSeparation) discard;
         } else {
             // Where this point was last frame (its own motion, not only the camera's).

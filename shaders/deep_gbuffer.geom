@@ -20,6 +20,9 @@ flat out uint gsObjectId;
 invariant gl_Position;  // the same depth in every variant: layer 2's shading tests EQUAL against its depth prepass
 uniform int uFirstLayer;  // 0, or 1 for the second pass of depth peeling
 uniform int uLayerCount;  // 1 or 2
+// Clip x, y -> xy * scale + offset * w: layer 2 drawn at level L of the targets, each of its pixels the ray through
+// the level-0 pixel that level L samples (identity for a full-resolution draw).
+uniform vec4 uClipMap;
 void main() {
     for (int k = 0; k < 2; ++k) {
         if (k >= uLayerCount) break;
@@ -39,6 +42,7 @@ void main() {
             gsObjectId = vsObjectId[i];
 #endif
             gl_Position = uViewProj * vec4(vs[i].world, 1.0);
+            gl_Position.xy = gl_Position.xy * uClipMap.xy + uClipMap.zw * gl_Position.w;
             EmitVertex();
         }
         EndPrimitive();

@@ -11,6 +11,7 @@
 #include "common.glsl"
 uniform int uFirstLayer;
 uniform int uLayerCount;
+uniform vec4 uClipMap;  // xy scale, zw offset x w of clip x, y: layer 2 drawn at a coarser level (identity otherwise)
 #endif
 #include "scene_objects.glsl"
 layout(location = 0) in vec3 aPosition;
@@ -51,6 +52,7 @@ void main() {
 #ifdef LAYERED
     gl_Layer = uFirstLayer + min(gl_InstanceID, uLayerCount - 1);
     gl_Position = uViewProj * vec4(vs.world, 1.0);
+    gl_Position.xy = gl_Position.xy * uClipMap.xy + uClipMap.zw * gl_Position.w;
 #else
     gl_Position = vec4(vs.world, 1.0);
 #endif

@@ -16,6 +16,7 @@ uniform int uLayer;
 uniform int uHasEmission;
 uniform float uDamping;
 uniform int uSourceLevel;   // this draw fills mip level uSourceLevel: each texel is its level-0 source sample's
+uniform int uGBufferLevel;  // the G-buffer level this layer is read at: 0, or uSourceLevel where layer 2 was drawn there
 #if defined(DEEPGI_PROBES) || defined(DEEPGI_SKY)
 #include "probe_volume.glsl"
 #endif
@@ -26,11 +27,13 @@ layout(location = 0) out vec3 oRadiance;
 layout(location = 1) out vec4 oDirect;  // layer 1's outgoing direct radiance (Direct Radiance), for the composite
 void main() {
     ivec2 pix = sourcePixel(ivec2(gl_FragCoord.xy), uSourceLevel, textureSize(uDepth, 0).xy);
-    float d = texelFetch(uDepth, ivec3(pix, uLayer), 0).r;
+    ivec3 g = ivec3(uGBufferLevel == 0 ? pix : ivec2(gl_FragCoord.xy), uLayer);  // its G-buffer texel
+    int gLevel = uGBufferLevel;
+    float d = texelFetch(uDepth, g, gLevel).r;
     if (isSky(d)) { oRadiance = vec3(0.0); oDirect = vec4(0.0); return; }
     vec3 P = worldFromDepth(vec2(pix) + 0.5, d, uInvViewProj);
-    vec3 n = octDecode(texelFetch(uNormal, ivec3(pix, uLayer), 0).rg);
-    vec3 albedo = texelFetch(uAlbedo, ivec3(pix, uLayer), 0).rgb;
+    vec3 n = octDecode(texelFetch(uNormal, g, gLevel).rg);
+    vec3 albedo = texelFetch(uAlbedo, g, gLevel).rgb;
     vec3 Ls = vec3(0.0);  // layer 1's direct specular (towards the camera: the gather treats B as Lambertian)
 #ifdef SPECULAR
     vec4 spec = uLayer == 0 ? texelFetch(uSpecular, ivec3(pix, 0), 0) : vec4(0.0);
@@ -45,7 +48,7 @@ void main() {
     // as it does indirect light.
     vec3 Esky = probeSkyIrradiance(P, n, probeView);
 #ifdef OCCLUSION
-    Esky *= texelFetch(uOcclusion, ivec3(pix, uLayer), 0).r;
+    Esky *= texelFetch(uOcclusion, g, gLevel).r;
 #endif
     E += Esky;
 #endif
@@ -62,11 +65,11 @@ void main() {
     Eind = (1.0 - uDamping) * probeIrradiance(P, n, probeView);
 #endif
 #ifdef OCCLUSION
-    Eind *= texelFetch(uOcclusion, ivec3(pix, uLayer), 0).r;  // occlusion textures darken indirect light only
+    Eind *= texelFetch(uOcclusion, g, gLevel).r;  // occlusion textures darken indirect light only
 #endif
     E += Eind;
     vec3 B = albedo / PI * E;
-    if (uHasEmission != 0) B += texelFetch(uEmission, ivec3(pix, uLayer), 0).rgb;
+    if (uHasEmission != 0) B += texelFetch(uEmission, g, gLevel).rgb;
     // Layer 1's dither at its level-0 pixel at any level: its coarse texels are the bits a full-resolution draw wrote.
     oRadiance = sanitizeR11G11B10(B, uLayer == 0 ? vec2(pix) + 0.5 : gl_FragCoord.xy);
 }

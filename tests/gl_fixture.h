@@ -34,6 +34,27 @@ inline double meanChannel(const FloatImage& img, int c, int x0 = 0, int y0 = 0, 
     return n ? sum / n : 0.0;
 }
 
+// Layer 2 of the G-buffer as the last frame left it: the level it is drawn at (Renderer::lastLayer2Level) and, for a
+// texel of that level's image (row 0 at the top, no guard band), the level-0 image pixel whose ray it sampled.
+struct Layer2Image {
+    FloatImage image;
+    int level = 0;
+    int fullHeight = 0;
+    // Level-0 image pixel of texel (x, y): GL rows count up from the bottom, as the sample offset does.
+    glm::ivec2 pixel(int x, int y) const {
+        const glm::ivec2 c = tapSampleOffset(level);
+        const int glY = image.height - 1 - y;
+        return {(x << level) + c.x, fullHeight - 1 - ((glY << level) + c.y)};
+    }
+};
+inline Layer2Image readLayer2(const Renderer& r, const std::string& name) {
+    Layer2Image l;
+    l.level = r.lastLayer2Level();
+    l.image = r.readLayer(name, l.level);
+    l.fullHeight = r.readLayer(name, 0).height;
+    return l;
+}
+
 // Writes img to $DEEPGI_TEST_OUT/<name>.exr when that variable is set (for looking at test images).
 void dumpIfRequested(const std::string& name, const FloatImage& img);
 

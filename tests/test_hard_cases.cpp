@@ -159,20 +159,32 @@ TEST_F(GLTest, CoplanarOverlappingSurfaces) {
     st.minSeparation = 0.5f;
     for (int i = 0; i < 4; ++i) r.render(st);
     expectAllBuffersFinite(r, "coplanar");
-    FloatImage albedo = r.readLayer("Albedo 1"), d2 = r.readLayer("Depth 2");
-    int overlap = 0, odd = 0, wrongLayer2 = 0;
+    FloatImage albedo = r.readLayer("Albedo 1");
+    int overlap = 0, odd = 0, wrongLayer2 = 0, overlap2 = 0;
     // The overlap (x in [-0.5, 1], y in [-1, 0.5] at z = -2) in pixels: tan(30 deg) * 2 = 1.155 half-extent.
+    auto inOverlap = [](int x, int y) {
+        const float wx = ((x + 0.5f) / 32.0f - 1.0f) * 1.1547f, wy = (1.0f - (y + 0.5f) / 32.0f) * 1.1547f;
+        return !(wx < -0.45f || wx > 0.95f || wy < -0.95f || wy > 0.45f);
+    };
     for (int y = 0; y < 64; ++y)
         for (int x = 0; x < 64; ++x) {
-            const float wx = ((x + 0.5f) / 32.0f - 1.0f) * 1.1547f, wy = (1.0f - (y + 0.5f) / 32.0f) * 1.1547f;
-            if (wx < -0.45f || wx > 0.95f || wy < -0.95f || wy > 0.45f) continue;
+            if (!inOverlap(x, y)) continue;
             ++overlap;
             const float rr = albedo.at(x, y, 0), gg = albedo.at(x, y, 1);
             const bool isRed = std::abs(rr - 0.8f) < 0.01f && std::abs(gg - 0.1f) < 0.01f;
             const bool isGreen = std::abs(rr - 0.1f) < 0.01f && std::abs(gg - 0.8f) < 0.01f;
             if (!isRed && !isGreen) ++odd;
-            if (std::abs(d2.at(x, y, 0) - 5.0f) > 0.01f) ++wrongLayer2;
         }
+    // Layer 2 at the level it is drawn at, each texel judged at the pixel whose ray it sampled.
+    const Layer2Image d2 = readLayer2(r, "Depth 2");
+    for (int y = 0; y < d2.image.height; ++y)
+        for (int x = 0; x < d2.image.width; ++x) {
+            const glm::ivec2 p = d2.pixel(x, y);
+            if (!inOverlap(p.x, p.y)) continue;
+            ++overlap2;
+            if (std::abs(d2.image.at(x, y, 0) - 5.0f) > 0.01f) ++wrongLayer2;
+        }
+    EXPECT_GT(overlap2, 500 >> (2 * d2.level));
     EXPECT_GT(overlap, 500);
     EXPECT_EQ(odd, 0);
     EXPECT_EQ(wrongLayer2, 0);

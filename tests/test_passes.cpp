@@ -53,12 +53,23 @@ TEST_F(GLTest, DeepGBufferLayer2DepthAndMinimumSeparation) {
             s.minSeparation = dz;
             for (int i = 0; i < 3; ++i) r.render(s);
             EXPECT_EQ(r.lastGeometryPasses(), prepass == Layer2Prepass::On ? 3 : generation == GBufferGeneration::Predicted ? 1 : 2);
-            FloatImage d1 = r.readLayer("Depth 1"), d2 = r.readLayer("Depth 2");
+            // Layer 2 drawn alone (prepass, peeling) is drawn at the gather's finest tap level, its level 0 empty.
+            const bool alone = prepass == Layer2Prepass::On || generation == GBufferGeneration::DepthPeel;
+            FloatImage d1 = r.readLayer("Depth 1");
+            const Layer2Image d2 = readLayer2(r, "Depth 2");
+            EXPECT_EQ(d2.level, alone ? r.config().tapLevel : 0);
+            EXPECT_GT(r.config().tapLevel, 0) << "the default radiosity.min_mip";
             EXPECT_NEAR(centre(d1), 2.0f, 2e-3f) << "generation " << int(generation);
-            EXPECT_NEAR(centre(d2), expected, 2e-3f * expected) << "generation " << int(generation) << " dz " << dz;
+            EXPECT_NEAR(centre(d2.image), expected, 2e-3f * expected) << "generation " << int(generation) << " dz " << dz;
             // Where nothing is in front, layer 1 is the wall and layer 2 is empty (far plane).
             EXPECT_NEAR(d1.at(2, 2, 0), 6.0f, 2e-3f * 6.0f);
-            EXPECT_GE(d2.at(2, 2, 0), r.camera().zfar * 0.999f);
+            const glm::ivec2 corner = d2.pixel(0, 0);
+            EXPECT_NEAR(d1.at(corner.x, corner.y, 0), 6.0f, 2e-3f * 6.0f);
+            EXPECT_GE(d2.image.at(0, 0, 0), r.camera().zfar * 0.999f);
+            if (d2.level > 0) {
+                const FloatImage base = r.readLayer("Depth 2", 0);
+                EXPECT_GE(*std::min_element(base.pixels.begin(), base.pixels.end()), r.camera().zfar * 0.999f);
+            }
         }
     }
 }
@@ -69,7 +80,7 @@ TEST_F(GLTest, DeepGBufferLayer2DepthAndMinimumSeparation) {
 // geometry shader's single draw is the paper's and the independent answer.
 TEST_F(GLTest, LayerRoutingsFillTheSameDeepGBuffer) {
     auto scene = cornellScene();
-    std::map<std::string, FloatImage> got[2];
+    std::map<std::string, Layer2Image> got[2];
     for (int k : {0, 1}) {
         auto renderer = rendererFor(scene, 80, 60, "front");
         Renderer& r = *renderer;
@@ -86,15 +97,29 @@ TEST_F(GLTest, LayerRoutingsFillTheSameDeepGBuffer) {
         }
         EXPECT_EQ(r.config().layeredVertex, k == 0) << "auto takes the vertex route on llvmpipe";
         EXPECT_EQ(r.config().layer2Prepass, k == 0) << "auto takes the prepass on llvmpipe with few triangles";
-        for (const char* name : {"Depth 1", "Depth 2", "Normal 1", "Normal 2", "Albedo 1", "Albedo 2"}) got[k][name] = r.readLayer(name);
+        for (const char* name : {"Depth 1", "Normal 1", "Albedo 1"}) {
+            FloatImage img = r.readLayer(name);
+            got[k][name] = {img, 0, img.height};
+        }
+        for (const char* name : {"Depth 2", "Normal 2", "Albedo 2"}) got[k][name] = readLayer2(r, name);
+        EXPECT_EQ(got[k]["Depth 2"].level, k == 0 ? r.config().tapLevel : 0) << "the prepass draws layer 2 at level L";
     }
+    // The prepass's layer 2, drawn at level L, holds the samples of the one draw's full-resolution layer 2 that
+    // level L stands for (the same rays), up to the rasteriser's rounding of depth.
     for (const auto& [name, a] : got[0]) {
-        const FloatImage& b = got[1][name];
-        ASSERT_EQ(a.pixels.size(), b.pixels.size());
-        int differ = 0;
-        for (size_t i = 0; i < a.pixels.size(); ++i)
-            if (std::abs(a.pixels[i] - b.pixels[i]) > 1e-5f * std::max(1.0f, std::abs(b.pixels[i]))) ++differ;
-        EXPECT_EQ(differ, 0) << name;
+        const Layer2Image& b = got[1][name];
+        ASSERT_EQ(b.level, 0);
+        int differ = 0, texels = 0;
+        for (int y = 0; y < a.image.height; ++y)
+            for (int x = 0; x < a.image.width; ++x) {
+                const glm::ivec2 p = a.pixel(x, y);
+                for (int c = 0; c < a.image.channels; ++c) {
+                    const float va = a.image.at(x, y, c), vb = b.image.at(p.x, p.y, c);
+                    if (std::abs(va - vb) > 1e-5f * std::max(1.0f, std::abs(vb))) ++differ;
+                }
+                ++texels;
+            }
+        EXPECT_EQ(differ, 0) << name << " (" << texels << " texels)";
     }
 }
 
@@ -110,7 +135,9 @@ TEST_F(GLTest, PredictedLayer2MatchesPeelingForStillCamera) {
         s.lengthUnit = 1.0f;  // the lengths below are in scene units
         s.minSeparation = 0.2f;
         for (int i = 0; i < 3; ++i) r.render(s);
-        depth[g] = r.readLayer("Depth 2");
+        const Layer2Image d2 = readLayer2(r, "Depth 2");
+        EXPECT_EQ(d2.level, r.config().tapLevel) << "both draw layer 2 alone on llvmpipe (the prepass, peeling)";
+        depth[g] = d2.image;
     }
     int differ = 0;
     for (size_t i = 0; i < depth[0].pixels.size(); ++i)

@@ -128,7 +128,11 @@ void drawInspector(InspectorState& s, ViewerServices& services, double now, ImVe
 
     // Row 1: buffers and the comparison.
     ImGui::SetNextItemWidth(150.0f);
-    if (bufferCombo("A##inspA", s.a, names, false)) { s.zoom = 0.0f; s.stats = {}; }
+    if (bufferCombo("A##inspA", s.a, names, false)) {
+        s.zoom = 0.0f;
+        s.stats = {};
+        s.level = services.dataLevel(s.a);
+    }
     ImGui::SameLine();
     ImGui::SetNextItemWidth(150.0f);
     bufferCombo("B##inspB", s.b, names, true);

@@ -63,6 +63,9 @@ public:
     virtual std::string description(const std::string& name) = 0;      // the registry's TextureDecl.description
     virtual ErrorView errorView(const std::string& a, const std::string& b, int level, CompareMode mode, float scale) = 0;
     virtual EmptyMask emptyMask(const std::string& name, int level) = 0;
+    // The finest mip level that holds the buffer's data, shown first when it is picked: the gather's finest tap
+    // level for Input Radiance and a layer 2 drawn there, else 0.
+    virtual int dataLevel(const std::string& name) = 0;
 };
 
 // ---- settings ----------------------------------------------------------------------------------------------

@@ -4,32 +4,40 @@ namespace deepgi {
 
 static constexpr int kGatherLevels = 6;  // mip levels 0..5 read by the radiosity gather
 
+// Levels of the textures only the G-buffer writes: level L too where layer 2 may be drawn there.
+static int materialLevels(const PipelineConfig& c) { return c.layer2 ? c.tapLevel + 1 : 1; }
+
 void DeepGBufferPass::table(const PipelineConfig& c, PassTable& t) const {
+    const int ml = materialLevels(c);
+    const Levels written = c.layer2 && c.tapLevel > 0 ? Levels::All : Levels::Base;  // layer 2 at level L
     t.history("Depth").level(Levels::Base);  // layer 1 of last frame, copied into Last Depth before the draw
     t.write({"Depth", {"Depth 1", "Depth 2"}, GL_DEPTH_COMPONENT32, GL_TEXTURE_2D_ARRAY, SizeRule::screen(),
              kGatherLevels, MemoryGroup::GBuffer, Visualize::Depth,
-             "Hyperbolic depth of both layers; layer 2 is the nearest surface at least min-separation behind layer 1"})
-        .level(Levels::Base);
-    t.write({"Albedo", {"Albedo 1", "Albedo 2"}, GL_RGB8, GL_TEXTURE_2D_ARRAY, SizeRule::screen(), 1,
+             "Hyperbolic depth of both layers; layer 2 is the nearest surface at least min-separation behind layer 1. "
+             "Where layer 2 is drawn alone (software GL's layer-2 prepass, depth peeling), it is drawn at the gather's "
+             "finest tap level (radiosity.min_mip: the mip slider), the only level read, as are its other targets; "
+             "its finer levels are then empty"})
+        .level(written);
+    t.write({"Albedo", {"Albedo 1", "Albedo 2"}, GL_RGB8, GL_TEXTURE_2D_ARRAY, SizeRule::screen(), ml,
              MemoryGroup::GBuffer, Visualize::Color,
              "Diffuse albedo of both layers: base colour x texture x (1 - metallic) (the base colour with "
              "material.diffuse_only)"});
     t.write({"Normal", {"Normal 1", "Normal 2"}, GL_RG8_SNORM, GL_TEXTURE_2D_ARRAY, SizeRule::screen(),
              kGatherLevels, MemoryGroup::GBuffer, Visualize::Normal, "World-space shading normal of both layers (normal-mapped), oct16 encoded"})
-        .level(Levels::Base);
+        .level(written);
     t.write({"Last Depth", {"Last Depth"}, GL_DEPTH_COMPONENT32, GL_TEXTURE_2D, SizeRule::screen(), 1,
              MemoryGroup::GBuffer, Visualize::Depth, "Layer-1 depth of the previous frame (predicts layer 1 for the separation test)"},
             "uLastDepth");
     if (c.emission)
-        t.write({"Emission", {"Emission 1", "Emission 2"}, GL_R11F_G11F_B10F, GL_TEXTURE_2D_ARRAY, SizeRule::screen(), 1,
+        t.write({"Emission", {"Emission 1", "Emission 2"}, GL_R11F_G11F_B10F, GL_TEXTURE_2D_ARRAY, SizeRule::screen(), materialLevels(c),
                  MemoryGroup::Extra, Visualize::Radiance, "Emitted radiance of both layers (only for scenes with emissive materials)"});
     // Scene editing (issue 14): which node each pixel shows, and how far its surface moved since last frame; only
     // where a client picks, and once objects move (the two targets cost a still frame's G-buffer about a third).
     if (c.objectIds)
-        t.write({"Object ID", {"Object ID 1", "Object ID 2"}, GL_R32UI, GL_TEXTURE_2D_ARRAY, SizeRule::screen(), 1,
+        t.write({"Object ID", {"Object ID 1", "Object ID 2"}, GL_R32UI, GL_TEXTURE_2D_ARRAY, SizeRule::screen(), materialLevels(c),
                  MemoryGroup::Extra, Visualize::ObjectId, "Node index + 1 of the surface of each layer (0 = sky): picking"});
     if (c.objectMotion)
-        t.write({"Motion", {"Motion 1", "Motion 2"}, GL_RGBA16F, GL_TEXTURE_2D_ARRAY, SizeRule::screen(), 1, MemoryGroup::Extra,
+        t.write({"Motion", {"Motion 1", "Motion 2"}, GL_RGBA16F, GL_TEXTURE_2D_ARRAY, SizeRule::screen(), materialLevels(c), MemoryGroup::Extra,
                  Visualize::Color, "World-space position change of each layer's surface since last frame (previous - current; moving objects)"});
     writeMaterialTextures(c, t);
     if (c.depthPeel)
@@ -41,12 +49,12 @@ void DeepGBufferPass::table(const PipelineConfig& c, PassTable& t) const {
 // The metallic-roughness model's extras, only for scenes that have them (a Lambertian scene keeps the seed layout).
 void DeepGBufferPass::writeMaterialTextures(const PipelineConfig& c, PassTable& t) const {
     if (c.specular)
-        t.write({"Specular", {"Specular 1", "Specular 2"}, GL_RGBA8, GL_TEXTURE_2D_ARRAY, SizeRule::screen(), 1,
+        t.write({"Specular", {"Specular 1", "Specular 2"}, GL_RGBA8, GL_TEXTURE_2D_ARRAY, SizeRule::screen(), materialLevels(c),
                  MemoryGroup::Extra, Visualize::Color,
                  "GGX specular of both layers: rgb = F0 = mix(0.04, base, metallic), a = perceptual roughness (the "
                  "composite shades layer 1's direct lights with it; 0 = no specular)"});
     if (c.occlusion)
-        t.write({"Occlusion", {"Occlusion 1", "Occlusion 2"}, GL_R8, GL_TEXTURE_2D_ARRAY, SizeRule::screen(), 1,
+        t.write({"Occlusion", {"Occlusion 1", "Occlusion 2"}, GL_R8, GL_TEXTURE_2D_ARRAY, SizeRule::screen(), materialLevels(c),
                  MemoryGroup::Extra, Visualize::Color,
                  "The occlusion texture (x strength) of both layers: scales indirect light only (1 = none)"});
 }
@@ -83,6 +91,8 @@ void DeepGBufferPass::drawScene(FrameContext& ctx, int firstLayer, int layerCoun
             prog.minSeparation.set(g.minSeparation);
             prog.peel.set(peel);
             prog.diffuseOnly.set(ctx.settings.diffuseOnly);
+            prog.clipMap.set(clipMap_);
+            prog.drawLevel.set(drawLevel_);
             ctx.bindSamplers(prog, {{"uPeelDepth", peelDepth}});
             return prog.id();
         }, masked, true, layered ? layerCount : 1);
@@ -92,42 +102,56 @@ void DeepGBufferPass::drawScene(FrameContext& ctx, int firstLayer, int layerCoun
 // Layer 2 alone. With gbuffer.layer2_prepass, its tests (separation, alpha) run in a depth-only draw, and the shading
 // draw tests depth EQUAL with no discard: llvmpipe then tests depth before shading and shades one fragment per pixel,
 // where a shader that may discard is tested after it, every fragment behind layer 1 shaded.
-void DeepGBufferPass::drawLayer2(FrameContext& ctx, bool peel, const char* peelDepth) {
-    if (!ctx.config.layer2Prepass) {
-        drawScene(ctx, 1, 1, peel, peelDepth);
-        return;
-    }
-    glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
-    drawScene(ctx, 1, 1, peel, peelDepth, Layer2Draw::DepthPrepass);
-    glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
-    glDepthFunc(GL_EQUAL);
-    glDepthMask(GL_FALSE);
-    drawScene(ctx, 1, 1, peel, peelDepth, Layer2Draw::ShadeEqual);
-    glDepthFunc(GL_LESS);
-    glDepthMask(GL_TRUE);
+int DeepGBufferPass::layer2Level(const FrameContext& ctx) {
+    const bool alone = ctx.config.layer2 && (ctx.config.layer2Prepass || ctx.config.depthPeel || !ctx.historyValid);
+    return alone ? ctx.config.tapLevel : 0;
 }
 
-void DeepGBufferPass::execute(FrameContext& ctx) {
-    const int w = ctx.width, h = ctx.height;
-    const GLuint depth = ctx.texture("Depth"), lastDepth = ctx.texture("Last Depth");
-    // Before the draw: this frame's Last Depth is last frame's Depth 1.
-    glCopyImageSubData(depth, GL_TEXTURE_2D_ARRAY, 0, 0, 0, 0, lastDepth, GL_TEXTURE_2D, 0, 0, 0, 0, w, h, 1);
+// Layer 2 alone, at level layer2Level(). With gbuffer.layer2_prepass, its tests (separation, alpha) run in a
+// depth-only draw, and the shading draw tests depth EQUAL with no discard: llvmpipe then tests depth before shading
+// and shades one fragment per pixel, where a shader that may discard is tested after it, every fragment behind
+// layer 1 shaded. At level L each pixel T is the ray through level-0 pixel T 2^L + tapSampleOffset(L), the sample
+// layer 1's level L takes (sourcePixel): the clip map moves and scales the view onto that grid.
+void DeepGBufferPass::drawLayer2(FrameContext& ctx, bool peel, const char* peelDepth) {
+    const int level = layer2Level(ctx);
+    if (level > 0) {
+        const int s = 1 << level;
+        const int wl = std::max(1, ctx.width >> level), hl = std::max(1, ctx.height >> level);
+        const glm::ivec2 c = tapSampleOffset(level);
+        const glm::vec2 scale(float(ctx.width) / float(s * wl), float(ctx.height) / float(s * hl));
+        clipMap_ = glm::vec4(scale, scale.x - 1.0f + float(s - 1 - 2 * c.x) / float(s * wl),
+                             scale.y - 1.0f + float(s - 1 - 2 * c.y) / float(s * hl));
+        drawLevel_ = level;
+        bindTargets(ctx, level);
+    }
+    if (!ctx.config.layer2Prepass) {
+        drawScene(ctx, 1, 1, peel, peelDepth);
+    } else {
+        glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+        drawScene(ctx, 1, 1, peel, peelDepth, Layer2Draw::DepthPrepass);
+        glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+        glDepthFunc(GL_EQUAL);
+        glDepthMask(GL_FALSE);
+        drawScene(ctx, 1, 1, peel, peelDepth, Layer2Draw::ShadeEqual);
+        glDepthFunc(GL_LESS);
+        glDepthMask(GL_TRUE);
+    }
+    clipMap_ = glm::vec4(1.0f, 1.0f, 0.0f, 0.0f);
+    drawLevel_ = 0;
+}
 
-    std::vector<FramebufferCache::Attachment> atts = {{GL_DEPTH_ATTACHMENT, depth},
-                                                      {GL_COLOR_ATTACHMENT0, ctx.texture("Albedo")},
-                                                      {GL_COLOR_ATTACHMENT1, ctx.texture("Normal")}};
-    if (ctx.config.emission) atts.push_back({GL_COLOR_ATTACHMENT2, ctx.texture("Emission")});
-    if (ctx.config.objectIds) atts.push_back({GL_COLOR_ATTACHMENT5, ctx.texture("Object ID")});
-    if (ctx.config.objectMotion) atts.push_back({GL_COLOR_ATTACHMENT6, ctx.texture("Motion")});
-    if (ctx.config.specular) atts.push_back({GL_COLOR_ATTACHMENT3, ctx.texture("Specular")});
-    if (ctx.config.occlusion) atts.push_back({GL_COLOR_ATTACHMENT4, ctx.texture("Occlusion")});
-    GLuint fbo = ctx.fbos.get(atts, "deep G-buffer");
+GLuint DeepGBufferPass::bindTargets(FrameContext& ctx, int level) {
+    std::vector<FramebufferCache::Attachment> atts = {{GL_DEPTH_ATTACHMENT, ctx.texture("Depth"), level},
+                                                      {GL_COLOR_ATTACHMENT0, ctx.texture("Albedo"), level},
+                                                      {GL_COLOR_ATTACHMENT1, ctx.texture("Normal"), level}};
+    if (ctx.config.emission) atts.push_back({GL_COLOR_ATTACHMENT2, ctx.texture("Emission"), level});
+    if (ctx.config.objectIds) atts.push_back({GL_COLOR_ATTACHMENT5, ctx.texture("Object ID"), level});
+    if (ctx.config.objectMotion) atts.push_back({GL_COLOR_ATTACHMENT6, ctx.texture("Motion"), level});
+    if (ctx.config.specular) atts.push_back({GL_COLOR_ATTACHMENT3, ctx.texture("Specular"), level});
+    if (ctx.config.occlusion) atts.push_back({GL_COLOR_ATTACHMENT4, ctx.texture("Occlusion"), level});
+    GLuint fbo = ctx.fbos.get(atts, level == 0 ? "deep G-buffer" : "deep G-buffer layer 2");
     glBindFramebuffer(GL_FRAMEBUFFER, fbo);
-    glViewport(0, 0, w, h);
-    glEnable(GL_DEPTH_TEST);
-    glDepthFunc(GL_LESS);
-    glDepthMask(GL_TRUE);
-    glDisable(GL_BLEND);
+    glViewport(0, 0, std::max(1, ctx.width >> level), std::max(1, ctx.height >> level));
     const float zero[4] = {0, 0, 0, 0};
     glClearBufferfv(GL_COLOR, 0, zero);
     glClearBufferfv(GL_COLOR, 1, zero);
@@ -140,6 +164,38 @@ void DeepGBufferPass::execute(FrameContext& ctx) {
     if (ctx.config.occlusion) glClearBufferfv(GL_COLOR, 4, noOcclusion);
     const float one = 1.0f;
     glClearBufferfv(GL_DEPTH, 0, &one);
+    return fbo;
+}
+
+// The levels between 0 and L of the textures only the G-buffer writes hold nothing it draws: 0 (occlusion 1), once
+// per allocation (depth and normal: the input radiance pass's clearUnbuiltLevels).
+void DeepGBufferPass::clearUnusedLevels(const FrameContext& ctx) {
+    if (clearedGeneration_ == ctx.textures.generation()) return;
+    clearedGeneration_ = ctx.textures.generation();
+    const float one[4] = {1, 1, 1, 1};
+    for (int level = 1; level < materialLevels(ctx.config) - 1; ++level) {
+        glClearTexImage(ctx.texture("Albedo"), level, GL_RGB, GL_FLOAT, nullptr);
+        if (ctx.config.emission) glClearTexImage(ctx.texture("Emission"), level, GL_RGB, GL_FLOAT, nullptr);
+        if (ctx.config.objectIds) glClearTexImage(ctx.texture("Object ID"), level, GL_RED_INTEGER, GL_UNSIGNED_INT, nullptr);
+        if (ctx.config.objectMotion) glClearTexImage(ctx.texture("Motion"), level, GL_RGBA, GL_FLOAT, nullptr);
+        if (ctx.config.specular) glClearTexImage(ctx.texture("Specular"), level, GL_RGBA, GL_FLOAT, nullptr);
+        if (ctx.config.occlusion) glClearTexImage(ctx.texture("Occlusion"), level, GL_RED, GL_FLOAT, one);
+    }
+}
+
+void DeepGBufferPass::execute(FrameContext& ctx) {
+    const int w = ctx.width, h = ctx.height;
+    const GLuint depth = ctx.texture("Depth"), lastDepth = ctx.texture("Last Depth");
+    // Before the draw: this frame's Last Depth is last frame's Depth 1.
+    glCopyImageSubData(depth, GL_TEXTURE_2D_ARRAY, 0, 0, 0, 0, lastDepth, GL_TEXTURE_2D, 0, 0, 0, 0, w, h, 1);
+
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_LESS);
+    glDepthMask(GL_TRUE);
+    glDisable(GL_BLEND);
+    clearUnusedLevels(ctx);
+    const GLuint fbo = bindTargets(ctx, 0);
+    layer2Level_ = layer2Level(ctx);
 
     const bool peel = ctx.config.depthPeel || !ctx.historyValid;
     if (!ctx.config.layer2) {

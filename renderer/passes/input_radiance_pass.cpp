@@ -1,5 +1,6 @@
 #include "renderer/passes/input_radiance_pass.h"
 
+#include "renderer/passes/deep_gbuffer_pass.h"
 #include "renderer/passes/probe_update_pass.h"
 #include "renderer/scene/lighting.h"
 
@@ -89,8 +90,8 @@ void InputRadiancePass::execute(FrameContext& ctx) {
     // radiance from its finest tap level up (radiosity.min_mip, `coarse`): layer 2's is evaluated there, and so is
     // layer 1's unless the seed composite reads its level 0.
     const int layers = radianceOut && ctx.config.layer2 ? 2 : 1;
-    const int radianceLevels = radianceOut ? ctx.entry("Input Radiance").decl.levels : 1;
-    const int coarse = ctx.config.indirect ? std::clamp(s.minMip, 0, std::min(5, radianceLevels - 1)) : 0;
+    const int coarse = ctx.config.tapLevel;
+    const int layer2Level = DeepGBufferPass::layer2Level(ctx);  // coarse, or 0: where the G-buffer drew layer 2
     const bool layer1Coarse = coarse > 0 && !ctx.config.seedComposite;
     const GLuint depth = ctx.texture("Depth"), normal = ctx.texture("Normal");
     if (radianceOut) clearUnbuiltLevels(ctx, radiance, depth, normal, coarse, layer1Coarse, layers);
@@ -102,6 +103,7 @@ void InputRadiancePass::execute(FrameContext& ctx) {
         prog.lighting.set(ctx);
         prog.layer.set(0);
         prog.sourceLevel.set(0);
+        prog.gbufferLevel.set(0);
         ctx.bindSamplers(prog);
         ctx.drawFullscreen(prog.id(), ctx.fbos.get({{GL_COLOR_ATTACHMENT1, direct}}, "direct irradiance"), ctx.width, ctx.height);
     }
@@ -111,6 +113,7 @@ void InputRadiancePass::execute(FrameContext& ctx) {
             RadianceProgram& prog = program(layer);
             prog.layer.set(layer);
             prog.sourceLevel.set(level);
+            prog.gbufferLevel.set(layer == 1 ? layer2Level : 0);
             GLuint fbo = layer == 0 && level == 0
                              ? ctx.fbos.get({{GL_COLOR_ATTACHMENT0, radiance, 0, 0}, {GL_COLOR_ATTACHMENT1, direct}}, "input radiance 1")
                              : ctx.fbos.get({{GL_COLOR_ATTACHMENT0, radiance, level, layer}}, "input radiance");
@@ -145,7 +148,8 @@ void InputRadiancePass::execute(FrameContext& ctx) {
         for (int layer = 0; layer < layers; ++layer) {
             prog.layer.set(layer);
             // At the coarse level the radiance was evaluated (layer 2; layer 1 unless the seed composite needs its
-            // level 0): only depth and normal are built there.
+            // level 0): only depth and normal are built there, and not at all for a layer 2 drawn there.
+            if (fromBase && layer == 1 && layer2Level == coarse) continue;
             const bool withRadiance = !fromBase || (layer == 0 && !layer1Coarse);
             GLuint fbo = withRadiance ? ctx.fbos.get({{GL_DEPTH_ATTACHMENT, depth, level, layer},
                                                       {GL_COLOR_ATTACHMENT0, normal, level, layer},

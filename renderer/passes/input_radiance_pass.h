@@ -30,12 +30,14 @@ private:
         gl::Uniform<bool> hasEmission{*this, "uHasEmission"};
         gl::OptionalUniform<float> damping{*this, "uDamping"};  // unused without indirect light
         gl::Uniform<int> sourceLevel{*this, "uSourceLevel"};
+        gl::Uniform<int> gbufferLevel{*this, "uGBufferLevel"};
     };
     struct DirectProgram : gl::Program {  // DEEPGI_DIRECT_ONLY: Direct Radiance alone
         using gl::Program::Program;
         LightingUniforms lighting{*this};
         gl::Uniform<int> layer{*this, "uLayer"};
         gl::Uniform<int> sourceLevel{*this, "uSourceLevel"};
+        gl::Uniform<int> gbufferLevel{*this, "uGBufferLevel"};
     };
     struct MipProgram : gl::Program {
         using gl::Program::Program;

@@ -16,7 +16,7 @@ bool PipelineConfig::operator==(const PipelineConfig& o) const {
            std::equal(probeDepthSize, probeDepthSize + 2, o.probeDepthSize) && std::equal(probeDataSize, probeDataSize + 2, o.probeDataSize) &&
            std::equal(probeRadianceSize, probeRadianceSize + 2, o.probeRadianceSize) &&
            shadowMapLayers == o.shadowMapLayers && shadowCubeLayers == o.shadowCubeLayers &&
-           radiosityDownsample == o.radiosityDownsample && gatherInterleave == o.gatherInterleave && specular == o.specular && occlusion == o.occlusion &&
+           radiosityDownsample == o.radiosityDownsample && gatherInterleave == o.gatherInterleave && tapLevel == o.tapLevel && specular == o.specular && occlusion == o.occlusion &&
            normalMaps == o.normalMaps && objectIds == o.objectIds && objectMotion == o.objectMotion &&
            sky == o.sky && environmentMap == o.environmentMap &&
            std::equal(environmentMapSize, environmentMapSize + 2, o.environmentMapSize);

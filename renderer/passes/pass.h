@@ -56,9 +56,17 @@ struct PipelineConfig {
     int radiosityDownsample = 1;
     // radiosity.interleave: the gather runs on 1 in N blocks per frame, the others reuse the reprojected history.
     int gatherInterleave = 1;
+    // The gather's finest tap level L (radiosity.min_mip with indirect light, else 0): its texels sample pixel
+    // tapSampleOffset(L) of each 2^L block of level 0, and layer 2, where it is drawn alone, is drawn there.
+    int tapLevel = 0;
     SizeRule radiositySize() const { return SizeRule::screen(1.0f / float(radiosityDownsample)); }
     bool operator==(const PipelineConfig& o) const;
 };
+
+// The mip levels the gather reads (0..kMaxTapLevel); and the level-0 pixel of each 2^L block that level L samples:
+// the pixel right and below the block's centre (itself at level 0).
+constexpr int kMaxTapLevel = 5;
+inline glm::ivec2 tapSampleOffset(int level) { return glm::ivec2((1 << level) >> 1); }
 
 // ---- The pass table ---------------------------------------------------------------------------------------
 
