@@ -11,7 +11,8 @@ public:
     const char* name() const override { return "Deep G-buffer"; }
     void table(const PipelineConfig& c, PassTable& t) const override;
     void execute(FrameContext& ctx) override;
-    // Number of geometry passes in the last execute (1 predicted, 2 peeled; one more with the layer-2 depth prepass).
+    // Number of geometry passes in the last execute (1 predicted, 2 peeled or layer 2 alone; one more with the layer-2
+    // depth prepass at level 0).
     int lastGeometryPasses() const { return geometryPasses_; }
     // The level of the G-buffer's textures layer 2 is drawn at this frame: the gather's finest tap level L where layer
     // 2 is drawn alone (the layer-2 prepass, depth peeling, a frame without history), since nothing reads it finer;
@@ -37,7 +38,7 @@ private:
     enum class Layer2Draw { Whole, DepthPrepass, ShadeEqual };
     void drawScene(FrameContext& ctx, int firstLayer, int layerCount, bool peel, const char* peelDepth,
                    Layer2Draw layer2 = Layer2Draw::Whole);
-    void drawLayer2(FrameContext& ctx, bool peel, const char* peelDepth);
+    int drawLayer2(FrameContext& ctx, bool peel, const char* peelDepth);  // returns its geometry passes
     // The framebuffer of every target at one level (all layers), cleared.
     GLuint bindTargets(FrameContext& ctx, int level);
     void clearUnusedLevels(const FrameContext& ctx);
