@@ -1,7 +1,12 @@
 #version 450 core
 // Final image. physical: L = Le + albedo/pi * (E_direct + E_indirect), indirect counted once.
 // seed: L = E_input1 + E_output * albedo (the seed's formula, kept to measure its error).
+// Layer 1's direct light is evaluated here, where the image needs it (lighting.glsl).
 #include "common.glsl"
+#include "lighting.glsl"
+#ifdef DEEPGI_SKY
+#include "probe_volume.glsl"
+#endif
 #include "environment.glsl"
 uniform sampler2DArray uDepth;
 uniform sampler2DArray uAlbedo;
@@ -10,16 +15,18 @@ uniform sampler2DArray uEmission;
 uniform sampler2DArray uRadiance;   // Input Radiance 1/2
 uniform sampler2D uIndirect;        // Output Radiance
 uniform sampler2D uGeometry;        // Radiosity Geometry (a coarser radiosity grid only): the grid's positions, normals
-uniform sampler2D uDirect;          // Direct Radiance: rho/pi * shadowed E_direct of layer 1 (+ GGX specular)
+#ifdef SPECULAR
+uniform sampler2DArray uSpecular;   // F0 rgb, roughness: layer 1's direct specular
+#endif
 #ifdef OCCLUSION
-uniform sampler2DArray uOcclusion;  // the material's occlusion texture: darkens indirect light only
+uniform sampler2DArray uOcclusion;  // the material's occlusion texture: darkens indirect light (and the sky's) only
 #endif
 uniform int uHasEmission;
-uniform int uSeedMode;
 uniform float uExposure;   // linear scale 2^EV
 uniform int uTonemap;      // 0 clamp, 1 ACES fit
 layout(location = 0) out vec4 oRadiance;  // linear, unexposed
 layout(location = 1) out vec4 oDisplay;   // sRGB-encoded, exposed
+layout(location = 2) out vec4 oDirect;    // Direct Radiance: layer 1's outgoing direct radiance, for the inspector
 
 vec3 aces(vec3 x) { return clamp((x * (2.51 * x + 0.03)) / (x * (2.43 * x + 0.59) + 0.14), 0.0, 1.0); }
 vec3 toSrgb(vec3 c) {
@@ -62,10 +69,31 @@ vec3 indirectAt(ivec2 pix, vec3 P, vec3 n) {
     return total > 1e-3 ? sum / total : best;
 }
 
+// Layer 1's outgoing direct radiance at pixel pix (surface P, unit n): albedo/pi x the shadowed irradiance of every
+// light and of the sky, plus the GGX specular towards the camera. The one evaluation of it at full resolution (the
+// input radiance pass evaluates it again only at the level-L samples the gather reads, before the gather).
+vec3 directRadiance(ivec2 pix, vec3 P, vec3 n, vec3 albedo) {
+    vec3 Ls = vec3(0.0);
+#ifdef SPECULAR
+    vec3 E = directIrradianceAndSpecular(P, n, viewDirection(P), texelFetch(uSpecular, ivec3(pix, 0), 0), Ls);
+#else
+    vec3 E = directIrradiance(P, n);
+#endif
+#ifdef DEEPGI_SKY  // the sky is direct light too; an occlusion texture darkens it as it does indirect light
+    vec3 Esky = probeSkyIrradiance(P, n, viewDirection(P));
+#ifdef OCCLUSION
+    Esky *= texelFetch(uOcclusion, ivec3(pix, 0), 0).r;
+#endif
+    E += Esky;
+#endif
+    return sanitize(albedo / PI * E + Ls);  // radiance: below the clamp wherever the final image is
+}
+
 void main() {
     ivec2 pix = ivec2(gl_FragCoord.xy);
     float d = texelFetch(uDepth, ivec3(pix, 0), 0).r;
     vec3 L;
+    oDirect = vec4(0.0);
     if (isSky(d)) {
         L = uBackground.rgb + environmentBackdrop(gl_FragCoord.xy);  // the environment is seen, and lights (input radiance)
     } else {
@@ -80,12 +108,13 @@ void main() {
 #ifdef OCCLUSION
         E *= texelFetch(uOcclusion, ivec3(pix, 0), 0).r;
 #endif
-        if (uSeedMode != 0) {
-            L = texelFetch(uRadiance, ivec3(pix, 0), 0).rgb + E * albedo;
-        } else {
-            L = texelFetch(uDirect, pix, 0).rgb + albedo / PI * E;
-            if (uHasEmission != 0) L += texelFetch(uEmission, ivec3(pix, 0), 0).rgb;
-        }
+        oDirect = vec4(directRadiance(pix, P, n, albedo), 1.0);
+#ifdef DEEPGI_SEED_COMPOSITE
+        L = texelFetch(uRadiance, ivec3(pix, 0), 0).rgb + E * albedo;
+#else
+        L = oDirect.rgb + albedo / PI * E;
+        if (uHasEmission != 0) L += texelFetch(uEmission, ivec3(pix, 0), 0).rgb;
+#endif
     }
     L = sanitize(L);
     oRadiance = vec4(L, 1.0);

@@ -10,7 +10,6 @@ uniform sampler2DArray uAlbedo;
 uniform sampler2DArray uNormal;
 uniform sampler2DArray uEmission;
 uniform sampler2D uReprojected;
-uniform sampler2DArray uSpecular;   // F0 rgb, roughness (SPECULAR: scenes with specular materials)
 uniform sampler2DArray uOcclusion;  // the occlusion texture (OCCLUSION)
 uniform int uLayer;
 uniform int uHasEmission;
@@ -24,23 +23,16 @@ uniform int uGBufferLevel;  // the G-buffer level this layer is read at: 0, or u
 #include "environment.glsl"
 #endif
 layout(location = 0) out vec3 oRadiance;
-layout(location = 1) out vec4 oDirect;  // layer 1's outgoing direct radiance (Direct Radiance), for the composite
 void main() {
     ivec2 pix = sourcePixel(ivec2(gl_FragCoord.xy), uSourceLevel, textureSize(uDepth, 0).xy);
     ivec3 g = ivec3(uGBufferLevel == 0 ? pix : ivec2(gl_FragCoord.xy), uLayer);  // its G-buffer texel
     int gLevel = uGBufferLevel;
     float d = texelFetch(uDepth, g, gLevel).r;
-    if (isSky(d)) { oRadiance = vec3(0.0); oDirect = vec4(0.0); return; }
+    if (isSky(d)) { oRadiance = vec3(0.0); return; }
     vec3 P = worldFromDepth(vec2(pix) + 0.5, d, uInvViewProj);
     vec3 n = octDecode(texelFetch(uNormal, g, gLevel).rg);
     vec3 albedo = texelFetch(uAlbedo, g, gLevel).rgb;
-    vec3 Ls = vec3(0.0);  // layer 1's direct specular (towards the camera: the gather treats B as Lambertian)
-#ifdef SPECULAR
-    vec4 spec = uLayer == 0 ? texelFetch(uSpecular, ivec3(pix, 0), 0) : vec4(0.0);
-    vec3 E = directIrradianceAndSpecular(P, n, viewDirection(P), spec, Ls);
-#else
-    vec3 E = directIrradiance(P, n);
-#endif
+    vec3 E = directIrradiance(P, n);  // Lambertian: the gather treats B as such (the composite adds the specular)
     // Layer 1 is seen by the camera: the probes' view bias moves it towards the camera (layer 2: along n only).
     vec3 probeView = uLayer == 0 ? viewDirection(P) : vec3(0.0);
 #ifdef DEEPGI_SKY
@@ -51,11 +43,6 @@ void main() {
     Esky *= texelFetch(uOcclusion, g, gLevel).r;
 #endif
     E += Esky;
-#endif
-    oDirect = vec4(sanitize(albedo / PI * E + Ls), 1.0);  // radiance: below the clamp wherever the final image is
-#ifdef DEEPGI_DIRECT_ONLY  // layer 1 at full resolution where the gather reads its radiance only at a coarser level
-    oRadiance = vec3(0.0);
-    return;
 #endif
     vec3 Eind = vec3(0.0);
 #ifdef DEEPGI_HISTORY_FEEDBACK  // layer 1 with a history: last frame's indirect light (multi-bounce)

@@ -227,7 +227,7 @@ void fullComposite(PassTable& t) {
     t.read("Input Radiance", "uRadiance").optional();
     t.read("Output Radiance", "uIndirect").optional();
     t.read("Radiosity Geometry", "uGeometry").optional();
-    t.read("Direct Radiance", "uDirect").optional();
+    readShadowMaps(t);  // the composite evaluates layer 1's direct light
     t.write({"Fake Output", {"Fake Output"}, GL_RGBA16F, GL_TEXTURE_2D, SizeRule::screen(), 1, MemoryGroup::Extra, Visualize::Radiance, ""});
 }
 
@@ -258,7 +258,7 @@ TEST_F(GLTest, ShaderSamplingATextureOutsideTheTableIsAnError) {
             t.read("Emission", "uEmission").optional();
             t.read("Input Radiance", "uRadiance").optional();
             t.read("Output Radiance", "uIndirect").optional();
-            t.read("Direct Radiance", "uDirect").optional();
+            readShadowMaps(t);
             t.write({"Fake Output", {"Fake Output"}, GL_RGBA16F, GL_TEXTURE_2D, SizeRule::screen(), 1, MemoryGroup::Extra, Visualize::Radiance, ""});
         },
         [program = std::make_shared<gl::ProgramSlot<CompositeProgram>>()](FrameContext& ctx, gl::ShaderLibrary& lib) {

@@ -1,6 +1,8 @@
 #include "renderer/passes/composite_pass.h"
 
 #include "renderer/passes/environment_pass.h"
+#include "renderer/passes/probe_update_pass.h"
+#include "renderer/scene/lighting.h"
 
 #include <cmath>
 
@@ -15,12 +17,22 @@ void CompositePass::table(const PipelineConfig& c, PassTable& t) const {
     t.read("Input Radiance", "uRadiance").level(Levels::Base).optional(!c.seedComposite);  // seed formula only
     t.read("Output Radiance", "uIndirect").optional(!c.indirect);
     t.read("Radiosity Geometry", "uGeometry").optional(!c.indirect || c.radiosityDownsample == 1);  // the upsample
-    t.read("Direct Radiance", "uDirect");  // evaluated once, by the input radiance pass
+    // Layer 1's direct light, evaluated here: the lights and their shadow maps, the specular lobe, the sky.
+    t.read("Specular", "uSpecular").optional(!c.specular);
+    readShadowMaps(t);
+    if (c.sky) readProbeSky(t);
     readEnvironmentMap(c, t);                // the backdrop
     t.write({"Final Radiance", {"Final Radiance"}, GL_RGBA16F, GL_TEXTURE_2D, SizeRule::screen(), 1, MemoryGroup::Extra,
              Visualize::Radiance, "Linear radiance of the final image (what final.exr holds)"});
     t.write({"Final Display", {"Final Display"}, GL_RGBA8, GL_TEXTURE_2D, SizeRule::screen(), 1, MemoryGroup::Extra,
              Visualize::Display, "Exposed, tone-mapped, sRGB-encoded final image (what final.png holds)"});
+    // Half floats: the direct light keeps 11 bits of precision; as outgoing radiance it is bounded by the same clamp
+    // as the final image (an irradiance could pass 65504).
+    t.write({"Direct Radiance", {"Direct Radiance"}, GL_RGBA16F, GL_TEXTURE_2D, SizeRule::screen(), 1,
+             MemoryGroup::Extra, Visualize::Radiance,
+             "Outgoing direct radiance of layer 1 (albedo / pi x the shadowed direct irradiance from every light and "
+             "the sky, plus the GGX specular of Specular), evaluated once at full resolution by the composite, which "
+             "adds emission and indirect light to it"});
 }
 
 std::vector<std::string> CompositePass::materialDefines(const PipelineConfig& c) {
@@ -33,17 +45,24 @@ void CompositePass::execute(FrameContext& ctx) {
     const CompositeSettings& s = ctx.settings;
     std::vector<std::string> defines = materialDefines(ctx.config);
     if (ctx.config.environmentMap) defines.push_back("DEEPGI_ENVIRONMENT_MAP");
+    if (ctx.config.specular) defines.push_back("SPECULAR");
+    if (ctx.config.sky) defines.push_back("DEEPGI_SKY");
+    if (ctx.config.seedComposite) defines.push_back("DEEPGI_SEED_COMPOSITE");
+    // Both branches of lightAt() run on llvmpipe: the storage buffer only when some light is not in the block.
+    if (ctx.lightCount <= kBlockLights) defines.push_back("DEEPGI_BLOCK_LIGHTS_ONLY");
+    if (ctx.config.sky) bindProbeUniforms(ctx);
     // Direct light only: a variant without the upsample (llvmpipe ran it under the uniform test, 2/3 of the pass).
     if (!ctx.config.indirect) defines.push_back("DEEPGI_NO_INDIRECT");
     Program& prog = program_.get(ctx.shaders, {"fullscreen.vert", "", "composite.frag", "", defines});
     prog.environment.set(environmentUniform(ctx));
     prog.hasEmission.set(ctx.config.emission);
-    prog.seedMode.set(ctx.config.seedComposite);
+    prog.lighting.set(ctx);
     prog.exposure.set(std::exp2(s.exposure));
     prog.tonemap.set(int(s.tonemap));
     ctx.bindSamplers(prog);
     GLuint fbo = ctx.fbos.get({{GL_COLOR_ATTACHMENT0, ctx.texture("Final Radiance")},
-                               {GL_COLOR_ATTACHMENT1, ctx.texture("Final Display")}}, "final");
+                               {GL_COLOR_ATTACHMENT1, ctx.texture("Final Display")},
+                               {GL_COLOR_ATTACHMENT2, ctx.texture("Direct Radiance")}}, "final");
     ctx.drawFullscreen(prog.id(), fbo, ctx.width, ctx.height);
 }
 

@@ -3,7 +3,8 @@
 
 namespace deepgi {
 
-// Final image: linear radiance (Final Radiance) and the exposed, sRGB-encoded display image (Final Display).
+// Final image: linear radiance (Final Radiance) and the exposed, sRGB-encoded display image (Final Display), from
+// layer 1's direct light, evaluated here (Direct Radiance), emission and the upsampled indirect light.
 class CompositePass final : public RenderPass {
 public:
     const char* name() const override { return "Composite"; }
@@ -14,8 +15,8 @@ private:
     static std::vector<std::string> materialDefines(const PipelineConfig& c);  // OCCLUSION
     struct Program : gl::Program {
         using gl::Program::Program;
-        gl::Uniform<bool> hasEmission{*this, "uHasEmission"};
-        gl::Uniform<bool> seedMode{*this, "uSeedMode"};
+        gl::OptionalUniform<bool> hasEmission{*this, "uHasEmission"};  // not in the seed composite
+        LightingUniforms lighting{*this};
         gl::Uniform<float> exposure{*this, "uExposure"};
         gl::Uniform<int> tonemap{*this, "uTonemap"};
         gl::Uniform<glm::vec4> environment{*this, "uEnvironment"};

@@ -20,24 +20,16 @@ void InputRadiancePass::table(const PipelineConfig& c, PassTable& t) const {
     }
     t.read("Albedo", "uAlbedo");
     t.read("Emission", "uEmission").optional(!c.emission);
-    t.read("Specular", "uSpecular").optional(!c.specular);     // layer 1's direct specular joins Direct Radiance
     t.read("Occlusion", "uOcclusion").optional(!c.occlusion);  // scales the indirect feedback
     t.read("Reprojected Radiance", "uReprojected").optional(!c.indirect);  // the multi-bounce feedback
     readShadowMaps(t);
     if (c.sky) readProbeSky(t);  // the sky's light (and the probe volume)
     else if (c.probes) readProbeVolume(t);  // layer 2's indirect light, and layer 1's before there is a history
-    if (c.indirect || c.seedComposite)
-        t.write({"Input Radiance", {"Input Radiance 1", "Input Radiance 2"}, GL_R11F_G11F_B10F, GL_TEXTURE_2D_ARRAY,
-                 SizeRule::screen(), 6, MemoryGroup::Radiosity, Visualize::Radiance,
-                 "Outgoing radiance of both layers (what the gather collects), from the gather's finest tap level "
-                 "(radiosity.min_mip) up, the finer levels 0 (layer 1 from level 0 with the seed composite)"},
-                "uRadiance");
-    // Half floats: the direct light keeps 11 bits of precision (R11G11B10's 6 would put 1.5 % steps in it); as
-    // outgoing radiance it is bounded by the same clamp as the final image (an irradiance could pass 65504).
-    t.write({"Direct Radiance", {"Direct Radiance"}, GL_RGBA16F, GL_TEXTURE_2D, SizeRule::screen(), 1,
-             MemoryGroup::Extra, Visualize::Radiance,
-             "Outgoing direct radiance of layer 1 (albedo / pi x the shadowed direct irradiance from every light, plus "
-             "the GGX specular of Specular), evaluated once; the composite adds emission and indirect light"});
+    t.write({"Input Radiance", {"Input Radiance 1", "Input Radiance 2"}, GL_R11F_G11F_B10F, GL_TEXTURE_2D_ARRAY,
+             SizeRule::screen(), 6, MemoryGroup::Radiosity, Visualize::Radiance,
+             "Outgoing radiance of both layers (what the gather collects), from the gather's finest tap level "
+             "(radiosity.min_mip) up, the finer levels 0 (layer 1 from level 0 with the seed composite)"},
+            "uRadiance");
 }
 
 // The levels below the coarse one that nothing writes (radiance of the layers evaluated at the coarse level; depth
@@ -63,11 +55,9 @@ void InputRadiancePass::clearUnbuiltLevels(const FrameContext& ctx, GLuint radia
 
 void InputRadiancePass::execute(FrameContext& ctx) {
     const RadiositySettings& s = ctx.settings;
-    const bool radianceOut = ctx.config.indirect || ctx.config.seedComposite;
-    const GLuint radiance = radianceOut ? ctx.texture("Input Radiance") : 0, direct = ctx.texture("Direct Radiance");
+    const GLuint radiance = ctx.texture("Input Radiance");
     std::vector<std::string> defines;
     if (ctx.config.probes) defines.push_back("DEEPGI_PROBES");
-    if (ctx.config.specular) defines.push_back("SPECULAR");
     if (ctx.config.occlusion) defines.push_back("OCCLUSION");
     if (ctx.config.sky) defines.push_back("DEEPGI_SKY");
     // Both branches of lightAt() run on llvmpipe (0.89 x of the pass with the sun alone when the buffer's is dropped).
@@ -86,39 +76,24 @@ void InputRadiancePass::execute(FrameContext& ctx) {
         ctx.bindSamplers(p);
         return p;
     };
-    // No layer-2 work when layer 2 is off, nor without indirect light (layer 1's direct light only). The gather reads
-    // radiance from its finest tap level up (radiosity.min_mip, `coarse`): layer 2's is evaluated there, and so is
-    // layer 1's unless the seed composite reads its level 0.
-    const int layers = radianceOut && ctx.config.layer2 ? 2 : 1;
+    // No layer-2 work when layer 2 is off. The gather reads radiance from its finest tap level up
+    // (radiosity.min_mip, `coarse`): both layers' radiance is evaluated there, layer 1's at level 0 instead when the
+    // seed composite reads it. Layer 1's direct light at full resolution is the composite's.
+    const int layers = ctx.config.layer2 ? 2 : 1;
     const int coarse = ctx.config.tapLevel;
     const int layer2Level = DeepGBufferPass::layer2Level(ctx);  // coarse, or 0: where the G-buffer drew layer 2
     const bool layer1Coarse = coarse > 0 && !ctx.config.seedComposite;
     const GLuint depth = ctx.texture("Depth"), normal = ctx.texture("Normal");
-    if (radianceOut) clearUnbuiltLevels(ctx, radiance, depth, normal, coarse, layer1Coarse, layers);
-    // Layer 1 at full resolution: Direct Radiance alone where its radiance is not needed at level 0.
-    if (!radianceOut || layer1Coarse) {
-        std::vector<std::string> d = defines;
-        d.push_back("DEEPGI_DIRECT_ONLY");
-        DirectProgram& prog = direct_.get(ctx.shaders, {"fullscreen.vert", "", "input_radiance.frag", "", d});
-        prog.lighting.set(ctx);
-        prog.layer.set(0);
-        prog.sourceLevel.set(0);
-        prog.gbufferLevel.set(0);
-        ctx.bindSamplers(prog);
-        ctx.drawFullscreen(prog.id(), ctx.fbos.get({{GL_COLOR_ATTACHMENT1, direct}}, "direct irradiance"), ctx.width, ctx.height);
+    clearUnbuiltLevels(ctx, radiance, depth, normal, coarse, layer1Coarse, layers);
+    for (int layer = 0; layer < layers; ++layer) {
+        const int level = layer == 1 || layer1Coarse ? coarse : 0;
+        RadianceProgram& prog = program(layer);
+        prog.layer.set(layer);
+        prog.sourceLevel.set(level);
+        prog.gbufferLevel.set(layer == 1 ? layer2Level : 0);
+        ctx.drawFullscreen(prog.id(), ctx.fbos.get({{GL_COLOR_ATTACHMENT0, radiance, level, layer}}, "input radiance"),
+                           std::max(1, ctx.width >> level), std::max(1, ctx.height >> level));
     }
-    if (radianceOut)
-        for (int layer = 0; layer < layers; ++layer) {
-            const int level = layer == 1 || layer1Coarse ? coarse : 0;
-            RadianceProgram& prog = program(layer);
-            prog.layer.set(layer);
-            prog.sourceLevel.set(level);
-            prog.gbufferLevel.set(layer == 1 ? layer2Level : 0);
-            GLuint fbo = layer == 0 && level == 0
-                             ? ctx.fbos.get({{GL_COLOR_ATTACHMENT0, radiance, 0, 0}, {GL_COLOR_ATTACHMENT1, direct}}, "input radiance 1")
-                             : ctx.fbos.get({{GL_COLOR_ATTACHMENT0, radiance, level, layer}}, "input radiance");
-            ctx.drawFullscreen(prog.id(), fbo, std::max(1, ctx.width >> level), std::max(1, ctx.height >> level));
-        }
     if (!ctx.config.indirect) return;
 
     // Mip chains for the gather from the coarse level up: that level straight from level 0 (the texel the chain of

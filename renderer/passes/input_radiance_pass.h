@@ -6,18 +6,19 @@
 
 namespace deepgi {
 
-// The one evaluation of direct light: layer 1's outgoing direct radiance (Direct Radiance, which the composite
-// reads), and with indirect light the outgoing radiance of both layers (direct light + emission, plus last frame's
-// indirect light on layer 1: one more bounce per frame), then the rotated-grid mip chains of depth, normal and
-// radiance. The gather reads radiance, depth and normal only from its finest tap level (radiosity.min_mip) up, whose
-// texels are point samples of level 0 (gather_mips.frag): both layers' radiance is evaluated at that level, for those
-// samples alone (layer 1's full-resolution draw writes Direct Radiance only), and that level's depth and normal are
-// taken straight from level 0; the finer levels are not built.
+// The outgoing radiance of both layers that the gather collects (direct light + emission, plus last frame's indirect
+// light on layer 1: one more bounce per frame), then the mip chains of depth, normal and radiance. The gather reads
+// them only from its finest tap level L (radiosity.min_mip) up, whose texels are point samples of level 0
+// (sourcePixel): both layers' radiance is evaluated at that level, for those samples alone, and that level's depth and
+// normal are taken straight from level 0 (layer 2's drawn there where the G-buffer drew it there); the finer levels
+// are not built. Layer 1's direct light at full resolution is the composite's (Direct Radiance).
 class InputRadiancePass final : public RenderPass {
 public:
     const char* name() const override { return "Input radiance"; }
     void table(const PipelineConfig& c, PassTable& t) const override;
     void execute(FrameContext& ctx) override;
+    // What the gather reads, or the seed composite (layer 1's level 0); the direct light alone is the composite's.
+    bool enabled(const PipelineConfig& c) const override { return c.indirect || c.seedComposite; }
 
 private:
     void clearUnbuiltLevels(const FrameContext& ctx, GLuint radiance, GLuint depth, GLuint normal, int coarse,
@@ -32,13 +33,6 @@ private:
         gl::Uniform<int> sourceLevel{*this, "uSourceLevel"};
         gl::Uniform<int> gbufferLevel{*this, "uGBufferLevel"};
     };
-    struct DirectProgram : gl::Program {  // DEEPGI_DIRECT_ONLY: Direct Radiance alone
-        using gl::Program::Program;
-        LightingUniforms lighting{*this};
-        gl::Uniform<int> layer{*this, "uLayer"};
-        gl::Uniform<int> sourceLevel{*this, "uSourceLevel"};
-        gl::Uniform<int> gbufferLevel{*this, "uGBufferLevel"};
-    };
     struct MipProgram : gl::Program {
         using gl::Program::Program;
         gl::Uniform<int> layer{*this, "uLayer"};
@@ -49,7 +43,6 @@ private:
         gl::Uniform<int> level{*this, "uLevel"};
     };
     gl::ProgramSlot<RadianceProgram> radiance_;
-    gl::ProgramSlot<DirectProgram> direct_;
     gl::ProgramSlot<MipProgram> mips_;
     gl::ProgramSlot<MipFromBaseProgram> mipsFromBase_;
 };
