@@ -135,6 +135,92 @@ void accumulateDepth(const uint16_t* blocks, const uint16_t* blocksEnd, const fl
     }
 }
 
+typedef int Int8 __attribute__((vector_size(32)));
+#define abs8(v) ((Float8)((Int8)(v) & 0x7fffffff))  // std::abs: the sign bit cleared (a macro: no vector ABI)
+
+// The part of ProbeVolume::probeWeights that costs: for 8 probes at once (positions px, py, pz), the smooth
+// back-face term and the Chebyshev visibility against each probe's depth moments (a bilinear fetch of its tile,
+// whose first interior texel is (tileX, tileY) in an atlas `width` texels wide with 2 floats per texel), then the
+// floor and the crush. The operations are the scalar code's, in its order, lane by lane: the same bits.
+__attribute__((target_clones("avx2", "default")))
+void probeVisibility8(const float* px, const float* py, const float* pz, const float* tileX, const float* tileY,
+                      const glm::vec3& x, const glm::vec3& n, const glm::vec3& biased, const float* atlas, size_t width,
+                      int texels, float* __restrict weightOut) {
+    const Float8 ppx = at8(px), ppy = at8(py), ppz = at8(pz);
+    // Smooth back-face term: probes behind the surface count less.
+    const Float8 tx = ppx - x.x, ty = ppy - x.y, tz = ppz - x.z;
+    const Float8 tt = (tx * tx + ty * ty) + tz * tz;
+    Float8 len, dist2;
+    const Float8 qx = biased.x - ppx, qy = biased.y - ppy, qz = biased.z - ppz;  // probe to the biased point
+    dist2 = (qx * qx + qy * qy) + qz * qz;
+    Float8 dist;
+    for (int i = 0; i < 8; ++i) {
+        len[i] = std::sqrt(tt[i]);
+        dist[i] = std::sqrt(dist2[i]);
+    }
+    const Float8 cosine = ((tx / len) * n.x + (ty / len) * n.y) + (tz / len) * n.z;
+    const Float8 wrap = len > 0.0f ? (cosine + 1.0f) * 0.5f : Float8{} + 1.0f;
+    Float8 weight = wrap * wrap + 0.2f;
+    // Chebyshev visibility against the probe's depth moments towards the (biased) receiver.
+    const auto has = dist > 0.0f;
+    const Float8 safe = has ? dist : Float8{} + 1.0f;  // lanes without a direction fetch texel (0, 0) of their tile
+    const Float8 dx = has ? qx / safe : Float8{}, dy = has ? qy / safe : Float8{}, dz = has ? qz / safe : Float8{} + 1.0f;
+    const Float8 l1 = (abs8(dx) + abs8(dy)) + abs8(dz);
+    Float8 ox = dx / l1, oy = dy / l1;
+    const Float8 one = Float8{} + 1.0f, minusOne = Float8{} - 1.0f;
+    const Float8 fx = (1.0f - abs8(oy)) * (ox >= 0.0f ? one : minusOne), fy = (1.0f - abs8(ox)) * (oy >= 0.0f ? one : minusOne);
+    ox = dz < 0.0f ? fx : ox;
+    oy = dz < 0.0f ? fy : oy;
+    const Float8 u = (at8(tileX) + (ox * 0.5f + 0.5f) * float(texels)) - 0.5f;
+    const Float8 v = (at8(tileY) + (oy * 0.5f + 0.5f) * float(texels)) - 0.5f;
+    Float8 c00x, c10x, c01x, c11x, c00y, c10y, c01y, c11y, u0, v0;
+    for (int i = 0; i < 8; ++i) {
+        u0[i] = std::floor(u[i]);
+        v0[i] = std::floor(v[i]);
+        const float* row0 = &atlas[(size_t(v0[i]) * width + size_t(u0[i])) * 2];
+        const float* row1 = row0 + width * 2;
+        c00x[i] = row0[0], c00y[i] = row0[1], c10x[i] = row0[2], c10y[i] = row0[3];
+        c01x[i] = row1[0], c01y[i] = row1[1], c11x[i] = row1[2], c11y[i] = row1[3];
+    }
+    const Float8 au = u - u0, av = v - v0;
+    const Float8 mx = (c00x * (1.0f - au) + c10x * au) * (1.0f - av) + (c01x * (1.0f - au) + c11x * au) * av;
+    const Float8 my = (c00y * (1.0f - au) + c10y * au) * (1.0f - av) + (c01y * (1.0f - au) + c11y * au) * av;
+    const Float8 variance = abs8(my - mx * mx);
+    const Float8 d = dist - mx;
+    const Float8 chebyshev = variance / (variance + d * d);
+    const Float8 c3 = chebyshev * chebyshev * chebyshev;
+    const Float8 visibility = c3 < 0.05f ? Float8{} + 0.05f : c3;
+    weight = (has & (dist > mx)) ? weight * visibility : weight;
+    weight = weight < 1e-6f ? Float8{} + 1e-6f : weight;
+    constexpr float kCrush = 0.2f;  // weights below this fall off cubically (fewer leaks)
+    weight = weight < kCrush ? weight * (weight * weight / (kCrush * kCrush)) : weight;
+    at8(weightOut) = weight;
+}
+
+// ProbeVolume::sampleAtlas<4>'s bilinear fetch of r, g, b for 8 probes at once (first interior texels tileX, tileY,
+// the same direction oct in every tile), in its operations and order: the same bits.
+__attribute__((target_clones("avx2", "default")))
+void atlasBilinear8(const float* tileX, const float* tileY, const glm::vec2& oct, const float* atlas, size_t width,
+                    int texels, float* __restrict r, float* __restrict g, float* __restrict b) {
+    const Float8 u = (at8(tileX) + (oct.x * 0.5f + 0.5f) * float(texels)) - 0.5f;
+    const Float8 v = (at8(tileY) + (oct.y * 0.5f + 0.5f) * float(texels)) - 0.5f;
+    Float8 u0, v0, c00[3], c10[3], c01[3], c11[3];
+    for (int i = 0; i < 8; ++i) {
+        u0[i] = std::floor(u[i]);
+        v0[i] = std::floor(v[i]);
+        const float* row0 = &atlas[(size_t(v0[i]) * width + size_t(u0[i])) * 4];
+        const float* row1 = row0 + width * 4;
+        for (int c = 0; c < 3; ++c) {
+            c00[c][i] = row0[c], c10[c][i] = row0[4 + c];
+            c01[c][i] = row1[c], c11[c][i] = row1[4 + c];
+        }
+    }
+    const Float8 au = u - u0, av = v - v0;
+    float* out[3] = {r, g, b};
+    for (int c = 0; c < 3; ++c)
+        at8(out[c]) = (c00[c] * (1.0f - au) + c10[c] * au) * (1.0f - av) + (c01[c] * (1.0f - au) + c11[c] * au) * av;
+}
+
 // The texel of an n x n octahedral map a direction leaves through.
 size_t octTexel(const glm::vec3& d, int n) {
     const glm::vec2 p = octahedral::encode(d) * 0.5f + 0.5f;
@@ -416,35 +502,26 @@ float ProbeVolume::probeWeights(const glm::vec3& x, const glm::vec3& n, int prob
     const glm::vec3 g = glm::clamp((biased - grid_.lo) / grid_.spacing - 0.5f, glm::vec3(-1.0f), glm::vec3(last));
     const glm::ivec3 base = glm::clamp(glm::ivec3(glm::floor(g)), glm::ivec3(0), last - 1);
     const glm::vec3 alpha = glm::clamp(g - glm::vec3(base), 0.0f, 1.0f);
+    // The 8 probes as lanes (an inactive one computed and dropped), then their weights summed in order.
+    alignas(32) float px[8], py[8], pz[8], tileX[8], tileY[8], visibility[8];
+    const int tile = depthN_ + 2;
+    for (int i = 0; i < 8; ++i) {
+        const glm::ivec3 o(i & 1, (i >> 1) & 1, (i >> 2) & 1);
+        const int probe = grid_.index(base + o);
+        const glm::vec3 probePos = grid_.gridPosition(base + o) + offset_[probe];
+        px[i] = probePos.x, py[i] = probePos.y, pz[i] = probePos.z;
+        tileX[i] = float((probe % tilesPerRow_) * tile + 1);
+        tileY[i] = float((probe / tilesPerRow_) * tile + 1);
+    }
+    probeVisibility8(px, py, pz, tileX, tileY, x, n, biased, depth_.data(), size_t(tilesPerRow_) * tile, depthN_, visibility);
     float total = 0.0f;
     for (int i = 0; i < 8; ++i) {
         const glm::ivec3 o(i & 1, (i >> 1) & 1, (i >> 2) & 1);
         const int probe = grid_.index(base + o);
         if (state_[probe] != ProbeState::Active) continue;
-        const glm::vec3 probePos = grid_.gridPosition(base + o) + offset_[probe];
         const glm::vec3 tri3 = glm::mix(1.0f - alpha, alpha, glm::vec3(o));
         const float trilinear = std::max(0.001f, tri3.x * tri3.y * tri3.z);
-        // Smooth back-face term: probes behind the surface count less.
-        const glm::vec3 toProbe = probePos - x;
-        const float toProbeLen = glm::length(toProbe);
-        const float wrap = toProbeLen > 0.0f ? (glm::dot(toProbe / toProbeLen, n) + 1.0f) * 0.5f : 1.0f;
-        float weight = wrap * wrap + 0.2f;
-        // Chebyshev visibility against the probe's depth moments towards the (biased) receiver.
-        const glm::vec3 probeToPoint = biased - probePos;
-        const float dist = glm::length(probeToPoint);
-        if (dist > 0.0f) {
-            const glm::vec2 m = sampleAtlas<2>(depth_, depthN_, probe, octahedral::encode(probeToPoint / dist));
-            if (dist > m.x) {
-                const float variance = std::abs(m.y - m.x * m.x);
-                const float d = dist - m.x;
-                const float chebyshev = variance / (variance + d * d);
-                weight *= std::max(chebyshev * chebyshev * chebyshev, 0.05f);
-            }
-        }
-        weight = std::max(weight, 1e-6f);
-        constexpr float kCrush = 0.2f;  // weights below this fall off cubically (fewer leaks)
-        if (weight < kCrush) weight *= weight * weight / (kCrush * kCrush);
-        weight *= trilinear;
+        const float weight = visibility[i] * trilinear;
         probes[i] = probe;
         weights[i] = weight;
         total += weight;
@@ -704,9 +781,18 @@ glm::vec3 ProbeVolume::weightedAtlasIrradiance(const std::vector<float>& atlas, 
     const float total = probeWeights(x, n, probes, weights, view);
     if (weightSum) *weightSum = total;
     const glm::vec2 octN = octahedral::encode(glm::dot(n, n) > 1e-12f ? n : glm::vec3(0, 0, 1));
+    // The 8 tiles' bilinear fetches as lanes (an unused probe's lane reads tile 0), summed in order.
+    alignas(32) float tileX[8], tileY[8], r[8], g[8], b[8];
+    const int tile = irrN_ + 2;
+    for (int i = 0; i < 8; ++i) {
+        const int probe = std::max(probes[i], 0);
+        tileX[i] = float((probe % tilesPerRow_) * tile + 1);
+        tileY[i] = float((probe / tilesPerRow_) * tile + 1);
+    }
+    atlasBilinear8(tileX, tileY, octN, atlas.data(), size_t(tilesPerRow_) * tile, irrN_, r, g, b);
     glm::vec3 sum(0.0f);
     for (int i = 0; i < 8; ++i)
-        if (probes[i] >= 0) sum += weights[i] * glm::vec3(sampleAtlas<4>(atlas, irrN_, probes[i], octN));
+        if (probes[i] >= 0) sum += weights[i] * glm::vec3(r[i], g[i], b[i]);
     return sum;
 }
 
