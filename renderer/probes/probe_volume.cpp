@@ -1,3 +1,6 @@
+// The probe volume: placement, the update's rays and their vectorised accumulation, the lookups and the commit, in
+// one file because they all work on the atlases' private layout (tiles, borders, SoA texel directions); the GL
+// upload is apart (probe_volume_textures.cpp).
 #include "renderer/probes/probe_volume.h"
 
 #include "renderer/probes/octahedral.h"
