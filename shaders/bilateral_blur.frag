@@ -54,7 +54,12 @@ void main() {
             ivec2 tp = pix + uAxis * (side * r * uStep);
             if (any(lessThan(tp, ivec2(0))) || any(greaterThanEqual(tp, size))) break;
             float b = bilateral(C, nC, tp);
-            if (uMonotonic != 0) { b = min(b, lastB); lastB = b; }
+            if (uMonotonic != 0) {
+                b = min(b, lastB);
+                lastB = b;
+                // No tap beyond counts on this side: llvmpipe leaves the loop once every pixel of a batch is here.
+                if (b == 0.0) break;
+            }
             float w = (0.3 + uKernel[r]) * b, t = float(side * r);
             vec3 v = texelFetch(uSource, tp, 0).rgb;
             s0 += w;

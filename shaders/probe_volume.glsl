@@ -75,12 +75,12 @@ vec2 probeOctEncode(vec3 d) {
     return p;
 }
 
-// Texture coordinate of direction d in probe `probe`'s tile of an atlas with n interior texels per tile edge.
-vec2 probeAtlasUv(int probe, int n, vec3 d, vec2 atlasSize) {
-    int tile = n + 2;
-    vec2 origin = vec2(probeTile(probe) * tile + 1);
+// Texture coordinate of direction d in the tile (column, row) of an atlas with n interior texels per tile edge.
+vec2 probeAtlasUv(ivec2 tile, int n, vec3 d, vec2 atlasSize) {
+    vec2 origin = vec2(tile * (n + 2) + 1);
     return (origin + (probeOctEncode(d) * 0.5 + 0.5) * float(n)) / atlasSize;
 }
+vec2 probeAtlasUv(int probe, int n, vec3 d, vec2 atlasSize) { return probeAtlasUv(probeTile(probe), n, d, atlasSize); }
 
 // The cell of probes around X (surface normal n, seen from unit direction V, or V = 0): its first corner, the
 // trilinear fractions, the biased receiver (moved along n and towards its viewer: C++ ProbeVolume::probeWeights).
@@ -160,13 +160,14 @@ vec4 probeIrradianceWeighted(vec3 X, vec3 n) { return probeAtlasWeighted(uProbeI
 vec3 probeIrradiance(vec3 X, vec3 n, vec3 V) { return probeAtlasWeighted(uProbeIrradiance, X, n, V).rgb; }
 vec3 probeIrradiance(vec3 X, vec3 n) { return probeIrradiance(X, n, vec3(0.0)); }
 
-// The 8 probes around X (surface normal n) and their normalised weights (probe -1: none), once per receiver, for
-// probeRadianceAt() in as many directions as needed; meanPos = the probes' weighted mean position.
-// False where no probe answers.
-bool probeSetAt(vec3 X, vec3 n, vec3 V, out int probes[8], out float weights[8], out vec3 meanPos) {
+// The 8 probes around X (surface normal n) as their atlas tiles and normalised weights (a probe that does not answer:
+// weight 0, tile (0, 0)), once per receiver, for probeRadianceAt() in as many directions as needed; meanPos = the
+// probes' weighted mean position. False where no probe answers. The lookups below add every probe's texel times its
+// weight without a test (llvmpipe runs both sides of a test anyway) and find its tile without a division.
+bool probeSetAt(vec3 X, vec3 n, vec3 V, out ivec2 tiles[8], out float weights[8], out vec3 meanPos) {
     meanPos = X;
     for (int i = 0; i < 8; ++i) {
-        probes[i] = -1;
+        tiles[i] = ivec2(0);
         weights[i] = 0.0;
     }
     ivec3 base;
@@ -177,10 +178,13 @@ bool probeSetAt(vec3 X, vec3 n, vec3 V, out int probes[8], out float weights[8],
     vec3 posSum = vec3(0.0);
     for (int i = 0; i < 8; ++i) {
         vec3 probePos;
-        probes[i] = probeCorner(i, base, alpha, X, n, biased, depthSize, weights[i], probePos);
-        if (probes[i] >= 0) {
+        int probe = probeCorner(i, base, alpha, X, n, biased, depthSize, weights[i], probePos);
+        if (probe >= 0) {
+            tiles[i] = probeTile(probe);
             total += weights[i];
             posSum += weights[i] * probePos;
+        } else {
+            weights[i] = 0.0;
         }
     }
     if (!(total > 0.0)) return false;
@@ -189,17 +193,12 @@ bool probeSetAt(vec3 X, vec3 n, vec3 V, out int probes[8], out float weights[8],
     return true;
 }
 
-bool probeSetAt(vec3 X, vec3 n, vec3 V, out int probes[8], out float weights[8]) {
-    vec3 meanPos;
-    return probeSetAt(X, n, V, probes, weights, meanPos);
-}
-
 // The irradiance on normal n at the receiver of probeSetAt() (as probeIrradiance(), without recomputing weights).
-vec3 probeIrradianceAt(int probes[8], float weights[8], vec3 n) {
+vec3 probeIrradianceAt(ivec2 tiles[8], float weights[8], vec3 n) {
     vec2 size = vec2(textureSize(uProbeIrradiance, 0));
     vec3 sum = vec3(0.0);
     for (int i = 0; i < 8; ++i)
-        if (probes[i] >= 0) sum += weights[i] * texture(uProbeIrradiance, probeAtlasUv(probes[i], uProbeTexels.x, n, size)).rgb;
+        sum += weights[i] * texture(uProbeIrradiance, probeAtlasUv(tiles[i], uProbeTexels.x, n, size)).rgb;
     return sum;
 }
 
@@ -213,16 +212,12 @@ ivec2 probeRadianceTexel(vec3 d) {
     return clamp(ivec2((probeOctEncode(d) * 0.5 + 0.5) * float(n)), ivec2(0), ivec2(n - 1));
 }
 
-vec4 probeRadianceDistanceAt(int probes[8], float weights[8], vec3 d) {
+vec4 probeRadianceDistanceAt(ivec2 tiles[8], float weights[8], vec3 d) {
     int n = uProbeTexels.w;
-    ivec2 t = probeRadianceTexel(d);
+    ivec2 t = probeRadianceTexel(d) + 1;
     vec4 sum = vec4(0.0);
-    for (int i = 0; i < 8; ++i)
-        if (probes[i] >= 0) {
-            ivec2 origin = probeTile(probes[i]) * (n + 2) + 1;
-            sum += weights[i] * texelFetch(uProbeRadiance, origin + t, 0);
-        }
+    for (int i = 0; i < 8; ++i) sum += weights[i] * texelFetch(uProbeRadiance, tiles[i] * (n + 2) + t, 0);
     return sum;
 }
 
-vec3 probeRadianceAt(int probes[8], float weights[8], vec3 d) { return probeRadianceDistanceAt(probes, weights, d).rgb; }
+vec3 probeRadianceAt(ivec2 tiles[8], float weights[8], vec3 d) { return probeRadianceDistanceAt(tiles, weights, d).rgb; }

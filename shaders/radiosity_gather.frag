@@ -78,7 +78,12 @@ vec2 toPixel(vec3 P) {
     return (c.xy / c.w * 0.5 + 0.5) * uViewport.xy;
 }
 
-int mipFor(float h) { return clamp(findMSB(max(int(h), 1)) - uLogMaxOffset, uMinMip, uMaxMip); }
+// findMSB(max(int(h), 1)) read off the float exponent of that integer (exact below 2^24): llvmpipe expands findMSB
+// into a long sequence on each of the ~90 calls per pixel.
+int mipFor(float h) {
+    int msb = (floatBitsToInt(float(max(int(h), 1))) >> 23) - 127;
+    return clamp(msb - uLogMaxOffset, uMinMip, uMaxMip);
+}
 
 // One march for both layers of a tap (one set of depth fetches): points evenly spaced on the screen from X's pixel
 // a to the tap's pixel b, where the segments X -> Y0 and X -> Y1 (both end on b's pixel ray) have eye depths that
@@ -314,7 +319,7 @@ void main() {
     // corner seen by both layers) are an estimate of it with too much weight, rescaled to the sector; what the taps
     // left uncovered (off screen, beyond the radius, hidden) takes the probes' radiance from a cosine-distributed
     // direction in the sector, new per pixel and frame (the blur and the temporal filter average them).
-    int fillProbes[8];
+    ivec2 fillProbes[8];
     float fillWeights[8];
     vec3 fillCentre;
     bool fill = probeSetAt(X, nX, V, fillProbes, fillWeights, fillCentre);

@@ -681,7 +681,7 @@ TEST_F(GLTest, ProbeVolumeShaderMatchesTheCpp) {
     // probeRadianceAt() equals ProbeVolume::radiance() (the directional fill's lookup), in a direction per point.
     glBindTextureUnit(6, tex[3].id());
     const std::string radianceLib = lib + "\nvec3 testDirection(vec3 n) { return normalize(n + vec3(0.3, -0.2, 0.1)); }\n"
-                                          "vec4 testRadiance(vec3 X, vec3 n) { int p[8]; float w[8]; probeSetAt(X, n, vec3(0.0), p, w);\n"
+                                          "vec4 testRadiance(vec3 X, vec3 n) { ivec2 p[8]; float w[8]; vec3 c; probeSetAt(X, n, vec3(0.0), p, w, c);\n"
                                           "  return vec4(probeRadianceAt(p, w, testDirection(n)), 1.0); }\n";
     const std::vector<float> rad = evaluateAtPoints("#version 450 core\n#define PROBE_VOLUME_FIXED_UNITS\n" + radianceLib,
                                                     "testRadiance(uPoints[i], uNormals[i])", ps, ns);
