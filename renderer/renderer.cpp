@@ -208,6 +208,7 @@ PipelineConfig Renderer::makeConfig(const Settings& s) const {
     c.layer2Prepass = c.layer2 && (s.layer2Prepass == Layer2Prepass::On ||
                                    (s.layer2Prepass == Layer2Prepass::Auto && software && fragmentBound));
     c.ao = s.aoEnabled;
+    c.compositeSkyDraw = software;
     // The gather's finest tap level: its radiance, depth and normal are evaluated or drawn there, not finer.
     // A frame too small for that level takes its coarsest (the textures' levels stop at one texel).
     if (c.indirect) {

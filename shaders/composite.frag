@@ -89,14 +89,31 @@ vec3 directRadiance(ivec2 pix, vec3 P, vec3 n, vec3 albedo) {
     return sanitize(albedo / PI * E + Ls);  // radiance: below the clamp wherever the final image is
 }
 
+void writeFinal(vec3 L) {
+    L = sanitize(L);
+    oRadiance = vec4(L, 1.0);
+    vec3 x = L * uExposure;
+    oDisplay = vec4(toSrgb(uTonemap == 1 ? aces(x) : x), 1.0);
+}
+
+#ifdef DEEPGI_SKY_PIXELS
+// The sky's pixels alone, where a depth test has picked them (CompositePass on software GL): the environment is seen.
+void main() {
+    oDirect = vec4(0.0);
+    writeFinal(uBackground.rgb + environmentBackdrop(gl_FragCoord.xy));
+}
+#else
 void main() {
     ivec2 pix = ivec2(gl_FragCoord.xy);
     float d = texelFetch(uDepth, ivec3(pix, 0), 0).r;
     vec3 L;
     oDirect = vec4(0.0);
+#ifndef DEEPGI_SURFACE_PIXELS  // defined where the sky's pixels have a draw of their own
     if (isSky(d)) {
         L = uBackground.rgb + environmentBackdrop(gl_FragCoord.xy);  // the environment is seen, and lights (input radiance)
-    } else {
+    } else
+#endif
+    {
         vec3 albedo = texelFetch(uAlbedo, ivec3(pix, 0), 0).rgb;
         vec3 P = worldFromDepth(vec2(pix) + 0.5, d, uInvViewProj);
         vec3 n = octDecode(texelFetch(uNormal, ivec3(pix, 0), 0).rg);
@@ -116,8 +133,6 @@ void main() {
         if (uHasEmission != 0) L += texelFetch(uEmission, ivec3(pix, 0), 0).rgb;
 #endif
     }
-    L = sanitize(L);
-    oRadiance = vec4(L, 1.0);
-    vec3 x = L * uExposure;
-    oDisplay = vec4(toSrgb(uTonemap == 1 ? aces(x) : x), 1.0);
+    writeFinal(L);
 }
+#endif

@@ -53,6 +53,8 @@ void CompositePass::execute(FrameContext& ctx) {
     if (ctx.config.sky) bindProbeUniforms(ctx);
     // Direct light only: a variant without the upsample (llvmpipe ran it under the uniform test, 2/3 of the pass).
     if (!ctx.config.indirect) defines.push_back("DEEPGI_NO_INDIRECT");
+    std::vector<std::string> skyDefines = defines;
+    if (ctx.config.compositeSkyDraw) defines.push_back("DEEPGI_SURFACE_PIXELS");
     Program& prog = program_.get(ctx.shaders, {"fullscreen.vert", "", "composite.frag", "", defines});
     prog.environment.set(environmentUniform(ctx));
     prog.hasEmission.set(ctx.config.emission);
@@ -60,10 +62,26 @@ void CompositePass::execute(FrameContext& ctx) {
     prog.exposure.set(std::exp2(s.exposure));
     prog.tonemap.set(int(s.tonemap));
     ctx.bindSamplers(prog);
-    GLuint fbo = ctx.fbos.get({{GL_COLOR_ATTACHMENT0, ctx.texture("Final Radiance")},
-                               {GL_COLOR_ATTACHMENT1, ctx.texture("Final Display")},
-                               {GL_COLOR_ATTACHMENT2, ctx.texture("Direct Radiance")}}, "final");
-    ctx.drawFullscreen(prog.id(), fbo, ctx.width, ctx.height);
+    std::vector<FramebufferCache::Attachment> atts = {{GL_COLOR_ATTACHMENT0, ctx.texture("Final Radiance")},
+                                                      {GL_COLOR_ATTACHMENT1, ctx.texture("Final Display")},
+                                                      {GL_COLOR_ATTACHMENT2, ctx.texture("Direct Radiance")}};
+    if (!ctx.config.compositeSkyDraw) {
+        ctx.drawFullscreen(prog.id(), ctx.fbos.get(atts, "final"), ctx.width, ctx.height);
+        return;
+    }
+    // Software GL: layer 1's depth as a read-only depth buffer (no depth writes: the shader's reads of it see what the
+    // G-buffer wrote). The triangle at depth 1 passes GREATER on the surfaces, LEQUAL on the sky (cleared to 1), so
+    // each draw's shader runs only on its own pixels.
+    atts.push_back({GL_DEPTH_ATTACHMENT, ctx.texture("Depth"), 0, 0});
+    const GLuint fbo = ctx.fbos.get(atts, "final + layer-1 depth");
+    ctx.drawFullscreenDepthTested(prog.id(), fbo, ctx.width, ctx.height, GL_GREATER, false, 1.0f);
+    skyDefines.push_back("DEEPGI_SKY_PIXELS");
+    SkyProgram& sky = skyProgram_.get(ctx.shaders, {"fullscreen.vert", "", "composite.frag", "", skyDefines});
+    sky.environment.set(environmentUniform(ctx));
+    sky.exposure.set(std::exp2(s.exposure));
+    sky.tonemap.set(int(s.tonemap));
+    ctx.bindSamplers(sky);
+    ctx.drawFullscreenDepthTested(sky.id(), fbo, ctx.width, ctx.height, GL_LEQUAL, false, 1.0f);
 }
 
 }  // namespace deepgi

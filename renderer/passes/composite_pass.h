@@ -19,9 +19,17 @@ private:
         LightingUniforms lighting{*this};
         gl::Uniform<float> exposure{*this, "uExposure"};
         gl::Uniform<int> tonemap{*this, "uTonemap"};
+        gl::OptionalUniform<glm::vec4> environment{*this, "uEnvironment"};  // the backdrop: not in the surfaces' draw
+    };
+    // The sky's pixels alone (config.compositeSkyDraw): the backdrop, exposed and encoded.
+    struct SkyProgram : gl::Program {
+        using gl::Program::Program;
+        gl::Uniform<float> exposure{*this, "uExposure"};
+        gl::Uniform<int> tonemap{*this, "uTonemap"};
         gl::Uniform<glm::vec4> environment{*this, "uEnvironment"};
     };
     gl::ProgramSlot<Program> program_;
+    gl::ProgramSlot<SkyProgram> skyProgram_;
 };
 
 }  // namespace deepgi

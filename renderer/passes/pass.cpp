@@ -136,7 +136,7 @@ void FrameContext::drawFullscreen(GLuint program, GLuint fbo, int w, int h) cons
 }
 
 void FrameContext::drawFullscreenDepthTested(GLuint program, GLuint fbo, int w, int h, GLenum depthFunc,
-                                             bool depthWrite) const {
+                                             bool depthWrite, float depth) const {
     glBindFramebuffer(GL_FRAMEBUFFER, fbo);
     glViewport(0, 0, w, h);
     glEnable(GL_DEPTH_TEST);
@@ -146,7 +146,9 @@ void FrameContext::drawFullscreenDepthTested(GLuint program, GLuint fbo, int w, 
     glDisable(GL_BLEND);
     glUseProgram(program);
     glBindVertexArray(fullscreenVao);
+    glDepthRange(depth, depth);  // the triangle's z is 0: it lands on `depth` whatever the range
     glDrawArrays(GL_TRIANGLES, 0, 3);
+    glDepthRange(0.0, 1.0);
     glDepthMask(GL_TRUE);
     glDepthFunc(GL_LESS);
     glDisable(GL_DEPTH_TEST);

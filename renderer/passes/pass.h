@@ -39,6 +39,9 @@ struct PipelineConfig {
     bool depthPeel = false;
     bool layer2Prepass = false;  // gbuffer.layer2_prepass: layer 2's depth first, then its shading with depth EQUAL
     bool layeredVertex = false;  // gbuffer.layer_routing: gl_Layer from the vertex stage (instanced draws), no geometry shader
+    // Software GL: the composite shades the sky's pixels with a draw of their own, the surfaces' draw skipping them by an
+    // early depth test against layer 1's depth (llvmpipe runs both sides of the shader's sky test).
+    bool compositeSkyDraw = false;
     bool ao = false;           // the ambient-occlusion pass runs
     bool probes = false;       // the world-space probe fallback runs (probes.enabled, indirect on)
     bool probeDirectionalFill = false;  // with probes: the gather fills per sector from Probe Radiance
@@ -182,9 +185,10 @@ struct FrameContext {
                       std::initializer_list<std::pair<const char*, const char*>> overrides = {}) const;
     // Draws a full-screen triangle into fbo with a viewport of w x h.
     void drawFullscreen(GLuint program, GLuint fbo, int w, int h) const;
-    // The same against fbo's depth attachment: depth test `depthFunc` (the triangle lies at depth 0.5), depth writes
-    // or not; afterwards depth test off, writes on, GL_LESS (the state the other passes expect).
-    void drawFullscreenDepthTested(GLuint program, GLuint fbo, int w, int h, GLenum depthFunc, bool depthWrite) const;
+    // The same against fbo's depth attachment: depth test `depthFunc` (the triangle lies at `depth`), depth writes
+    // or not; afterwards depth test off, writes on, GL_LESS, depth range [0, 1] (the state the other passes expect).
+    void drawFullscreenDepthTested(GLuint program, GLuint fbo, int w, int h, GLenum depthFunc, bool depthWrite,
+                                   float depth = 0.5f) const;
     // Size of the radiosity grid (config.radiositySize() of this screen).
     int radiosityWidth() const;
     int radiosityHeight() const;
