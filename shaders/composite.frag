@@ -22,17 +22,11 @@ uniform sampler2DArray uSpecular;   // F0 rgb, roughness: layer 1's direct specu
 uniform sampler2DArray uOcclusion;  // the material's occlusion texture: darkens indirect light (and the sky's) only
 #endif
 uniform int uHasEmission;
-uniform float uExposure;   // linear scale 2^EV
-uniform int uTonemap;      // 0 clamp, 1 ACES fit
+#include "display.glsl"
 layout(location = 0) out vec4 oRadiance;  // linear, unexposed
 layout(location = 1) out vec4 oDisplay;   // sRGB-encoded, exposed
 layout(location = 2) out vec4 oDirect;    // Direct Radiance: layer 1's outgoing direct radiance, for the inspector
 
-vec3 aces(vec3 x) { return clamp((x * (2.51 * x + 0.03)) / (x * (2.43 * x + 0.59) + 0.14), 0.0, 1.0); }
-vec3 toSrgb(vec3 c) {
-    c = clamp(c, 0.0, 1.0);
-    return mix(c * 12.92, 1.055 * pow(c, vec3(1.0 / 2.4)) - 0.055, step(vec3(0.0031308), c));
-}
 
 // Indirect irradiance at screen pixel pix (surface P, normal n) from the radiosity grid: its own texel at full
 // resolution; on a coarser grid the bilinear neighbours, each weighted by how well its surface matches this one
@@ -89,26 +83,12 @@ vec3 directRadiance(ivec2 pix, vec3 P, vec3 n, vec3 albedo) {
     return sanitize(albedo / PI * E + Ls);  // radiance: below the clamp wherever the final image is
 }
 
-void writeFinal(vec3 L) {
-    L = sanitize(L);
-    oRadiance = vec4(L, 1.0);
-    vec3 x = L * uExposure;
-    oDisplay = vec4(toSrgb(uTonemap == 1 ? aces(x) : x), 1.0);
-}
-
-#ifdef DEEPGI_SKY_PIXELS
-// The sky's pixels alone, where a depth test has picked them (CompositePass on software GL): the environment is seen.
-void main() {
-    oDirect = vec4(0.0);
-    writeFinal(uBackground.rgb + environmentBackdrop(gl_FragCoord.xy));
-}
-#else
 void main() {
     ivec2 pix = ivec2(gl_FragCoord.xy);
     float d = texelFetch(uDepth, ivec3(pix, 0), 0).r;
     vec3 L;
     oDirect = vec4(0.0);
-#ifndef DEEPGI_SURFACE_PIXELS  // defined where the sky's pixels have a draw of their own
+#ifndef DEEPGI_SURFACE_PIXELS  // defined where the sky's pixels have a draw of their own (composite_sky.frag)
     if (isSky(d)) {
         L = uBackground.rgb + environmentBackdrop(gl_FragCoord.xy);  // the environment is seen, and lights (input radiance)
     } else
@@ -133,6 +113,7 @@ void main() {
         if (uHasEmission != 0) L += texelFetch(uEmission, ivec3(pix, 0), 0).rgb;
 #endif
     }
-    writeFinal(L);
+    L = sanitize(L);
+    oRadiance = vec4(L, 1.0);
+    oDisplay = vec4(displayColor(L));
 }
-#endif

@@ -53,7 +53,6 @@ void CompositePass::execute(FrameContext& ctx) {
     if (ctx.config.sky) bindProbeUniforms(ctx);
     // Direct light only: a variant without the upsample (llvmpipe ran it under the uniform test, 2/3 of the pass).
     if (!ctx.config.indirect) defines.push_back("DEEPGI_NO_INDIRECT");
-    std::vector<std::string> skyDefines = defines;
     if (ctx.config.compositeSkyDraw) defines.push_back("DEEPGI_SURFACE_PIXELS");
     Program& prog = program_.get(ctx.shaders, {"fullscreen.vert", "", "composite.frag", "", defines});
     prog.environment.set(environmentUniform(ctx));
@@ -75,8 +74,9 @@ void CompositePass::execute(FrameContext& ctx) {
     atts.push_back({GL_DEPTH_ATTACHMENT, ctx.texture("Depth"), 0, 0});
     const GLuint fbo = ctx.fbos.get(atts, "final + layer-1 depth");
     ctx.drawFullscreenDepthTested(prog.id(), fbo, ctx.width, ctx.height, GL_GREATER, false, 1.0f);
-    skyDefines.push_back("DEEPGI_SKY_PIXELS");
-    SkyProgram& sky = skyProgram_.get(ctx.shaders, {"fullscreen.vert", "", "composite.frag", "", skyDefines});
+    std::vector<std::string> skyDefines;
+    if (ctx.config.environmentMap) skyDefines.push_back("DEEPGI_ENVIRONMENT_MAP");
+    SkyProgram& sky = skyProgram_.get(ctx.shaders, {"fullscreen.vert", "", "composite_sky.frag", "", skyDefines});
     sky.environment.set(environmentUniform(ctx));
     sky.exposure.set(std::exp2(s.exposure));
     sky.tonemap.set(int(s.tonemap));
