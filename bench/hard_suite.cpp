@@ -114,7 +114,8 @@ const std::vector<View>& views() {
     static const std::vector<View> v = {
         {"offscreen_light", "corner", ViewKind::Normal}, {"thin_wall", "lit", ViewKind::Normal},
         {"thin_wall", "dark", ViewKind::Dark},           {"hidden_emitter", "front", ViewKind::Normal},
-        {"sun_patch", "corner", ViewKind::Normal},       {"furnace", "inside", ViewKind::Furnace}};
+        {"sun_patch", "corner", ViewKind::Normal},       {"furnace", "inside", ViewKind::Furnace},
+        {"occluder", "above", ViewKind::Normal}};
     return v;
 }
 
@@ -235,7 +236,7 @@ HardResult runHardSuite(const HardOptions& options) {
     for (const auto& s : o.scenes) {
         bool known = false;
         for (const View& v : views()) known |= v.scene == s;
-        if (!known) throw std::runtime_error("bench: unknown hard scene '" + s + "' (offscreen_light, thin_wall, hidden_emitter, sun_patch, furnace)");
+        if (!known) throw std::runtime_error("bench: unknown hard scene '" + s + "' (offscreen_light, thin_wall, hidden_emitter, sun_patch, furnace, occluder)");
     }
     std::vector<BenchConfig> configs;
     const std::vector<std::string> names = o.configs.empty() ? std::vector<std::string>{"default"} : o.configs;

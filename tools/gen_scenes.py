@@ -1134,6 +1134,25 @@ def build_sun_patch():
     return b
 
 
+def build_occluder():
+    """An open court under a black sky: an 8 x 6 m floor (x -4..4, z -3..3), a 3 m wall along its back (z = -3,
+    facing +Z) and, 1 m in front of it, a black 0.8 m parapet (z -2.1..-2.0). The sun (about 31 deg high, travelling
+    towards -Z) lights the floor, the wall and the parapet's front. The camera stands high in front, looking down at
+    the floor before the parapet and the wall above it: the floor there sees the wall's lower part only through the
+    parapet, which the camera sees over. A gather that counts what it sees on screen without asking whether the
+    receiver sees it too (the visibility march) brings the wall's light onto that floor."""
+    b = SceneBuilder("occluder")
+    standard_materials(b, 0.8)
+    b.material("black", (0.02, 0.02, 0.02))
+    b.mesh("court")
+    b.box("floor", (-4.0, -0.2, -3.0), (4.0, 0.0, 3.0))
+    b.box("wall", (-4.0, 0.0, -3.2), (4.0, 3.0, -3.0), skip=("-y",))
+    b.box("black", (-4.0, 0.0, -2.1), (4.0, 0.8, -2.0), skip=("-y",))
+    b.sun = (HARD_SUN, sun_travel_direction(0.0, 31.0))
+    b.camera("above", (0.0, 5.0, 3.5), (0.0, 0.0, -1.8), 0.9, clip=(0.02, 50.0))
+    return b
+
+
 def build_furnace():
     """Closed 4 x 3 x 4 m box (x, z in -2..2) with a 0.8 m block on the floor; every surface has albedo 0.5 and
     emission 0.1, so the radiance is exactly 0.1 / (1 - 0.5) = 0.2 everywhere. No sun (a zero-intensity light keeps
@@ -1150,7 +1169,8 @@ def build_furnace():
     return b
 
 
-HARD_BUILDERS = (build_offscreen_light, build_thin_wall, build_hidden_emitter, build_sun_patch, build_furnace)
+HARD_BUILDERS = (build_offscreen_light, build_thin_wall, build_hidden_emitter, build_sun_patch, build_furnace,
+                 build_occluder)
 
 
 def scale_suffix(scale):
