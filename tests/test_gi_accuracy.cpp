@@ -174,3 +174,34 @@ TEST_F(GLTest, OffScreenLightFillMatchesThePathTracer) {
     EXPECT_NEAR(f.ratio, 1.0, 0.05);
     EXPECT_LT(f.relL1, 0.07);
 }
+
+// A black parapet between a sunlit floor and a wall, seen from above (assets/hard/occluder): the camera sees over it
+// what the floor at its foot cannot, so a gather that counts what the screen holds brings light through it. The
+// visibility march must take most of that excess away: at least half of what the gather without the march puts above
+// the path tracer. Here 4 march steps alone took 31 % of it away (ratio 1.37 against 1.53); with the test for a segment
+// that passes through layer 1 between two samples, 72 % (1.15).
+TEST_F(GLTest, VisibilityMarchBlocksLightThroughAParapet) {
+    const auto scene = hardScene("occluder");
+    const int W = 160, H = 90;
+    ReferenceOptions ro;
+    ro.width = W;
+    ro.height = H;
+    ro.spp = 256;
+    ro.maxBounces = 128;
+    ro.progress = false;
+    Settings diffuse;
+    diffuse.diffuseOnly = true;
+    const ReferenceResult ref = renderReference(*scene, selectCamera(*scene, "above"), diffuse, ro);
+    Settings directOnly = diffuse;
+    directOnly.indirect = false;
+    const FloatImage direct = renderView(scene, "above", directOnly, W, H, 2);
+    Settings noMarch = diffuse;
+    noMarch.visibilitySteps = 0;
+    const Figures marched = indirectFigures(renderView(scene, "above", diffuse, W, H, 120), direct, ref.final);
+    const Figures unmarched = indirectFigures(renderView(scene, "above", noMarch, W, H, 120), direct, ref.final);
+    std::printf("parapet: indirect ratio of means %.3f marched, %.3f without the march; relL1 %.1f / %.1f %%\n",
+                marched.ratio, unmarched.ratio, 100.0 * marched.relL1, 100.0 * unmarched.relL1);
+    EXPECT_GT(unmarched.ratio, 1.1);  // the scene does what it is built for
+    EXPECT_LT(marched.ratio - 1.0, 0.5 * (unmarched.ratio - 1.0));
+    EXPECT_LT(marched.relL1, 0.75 * unmarched.relL1);
+}
