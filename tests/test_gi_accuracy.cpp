@@ -132,6 +132,28 @@ FloatImage renderView(const std::shared_ptr<Scene>& scene, const std::string& ca
     return r.readFinalRadiance();
 }
 
+// What a view's indirect light is judged against: the path tracer's final image (diffuse, as the bench measures GI:
+// deepgi's indirect light has no specular lobe) and deepgi's direct light, both at w x h.
+struct ViewTruth {
+    Settings diffuse;
+    FloatImage referenceFinal, direct;
+};
+ViewTruth viewTruth(const std::shared_ptr<Scene>& scene, const std::string& camera, int w, int h) {
+    ViewTruth t;
+    t.diffuse.diffuseOnly = true;
+    ReferenceOptions ro;
+    ro.width = w;
+    ro.height = h;
+    ro.spp = 256;
+    ro.maxBounces = 128;
+    ro.progress = false;
+    t.referenceFinal = renderReference(*scene, selectCamera(*scene, camera), t.diffuse, ro).final;
+    Settings directOnly = t.diffuse;
+    directOnly.indirect = false;
+    t.direct = renderView(scene, camera, directOnly, w, h, 2);
+    return t;
+}
+
 }  // namespace
 
 // The closed furnace of the hard suite (every surface albedo 0.5, emission 0.1): the radiance is exactly 0.2 on every
@@ -154,22 +176,10 @@ TEST_F(GLTest, HardFurnaceWithinThreePercentEverywhere) {
 TEST_F(GLTest, OffScreenLightFillMatchesThePathTracer) {
     const auto scene = hardScene("offscreen_light");
     const int W = 160, H = 90;
-    ReferenceOptions ro;
-    ro.width = W;
-    ro.height = H;
-    ro.spp = 256;
-    ro.maxBounces = 128;
-    ro.progress = false;
-    // Diffuse against diffuse, as the bench measures GI: deepgi's indirect light has no specular lobe.
-    Settings diffuse;
-    diffuse.diffuseOnly = true;
-    const ReferenceResult ref = renderReference(*scene, selectCamera(*scene, "corner"), diffuse, ro);
-    Settings directOnly = diffuse;
-    directOnly.indirect = false;
-    const FloatImage direct = renderView(scene, "corner", directOnly, W, H, 2);
-    const FloatImage final = renderView(scene, "corner", diffuse, W, H, 200);
+    const ViewTruth truth = viewTruth(scene, "corner", W, H);
+    const FloatImage final = renderView(scene, "corner", truth.diffuse, W, H, 200);
     test::dumpIfRequested("offscreen_light", final);
-    const Figures f = indirectFigures(final, direct, ref.final);
+    const Figures f = indirectFigures(final, truth.direct, truth.referenceFinal);
     std::printf("off-screen light: indirect relL1 %.1f %%, ratio of means %.3f\n", 100.0 * f.relL1, f.ratio);
     EXPECT_NEAR(f.ratio, 1.0, 0.05);
     EXPECT_LT(f.relL1, 0.07);
@@ -183,22 +193,13 @@ TEST_F(GLTest, OffScreenLightFillMatchesThePathTracer) {
 TEST_F(GLTest, VisibilityMarchBlocksLightThroughAParapet) {
     const auto scene = hardScene("occluder");
     const int W = 160, H = 90;
-    ReferenceOptions ro;
-    ro.width = W;
-    ro.height = H;
-    ro.spp = 256;
-    ro.maxBounces = 128;
-    ro.progress = false;
-    Settings diffuse;
-    diffuse.diffuseOnly = true;
-    const ReferenceResult ref = renderReference(*scene, selectCamera(*scene, "above"), diffuse, ro);
-    Settings directOnly = diffuse;
-    directOnly.indirect = false;
-    const FloatImage direct = renderView(scene, "above", directOnly, W, H, 2);
-    Settings noMarch = diffuse;
+    const ViewTruth truth = viewTruth(scene, "above", W, H);
+    Settings noMarch = truth.diffuse;
     noMarch.visibilitySteps = 0;
-    const Figures marched = indirectFigures(renderView(scene, "above", diffuse, W, H, 120), direct, ref.final);
-    const Figures unmarched = indirectFigures(renderView(scene, "above", noMarch, W, H, 120), direct, ref.final);
+    const Figures marched =
+        indirectFigures(renderView(scene, "above", truth.diffuse, W, H, 120), truth.direct, truth.referenceFinal);
+    const Figures unmarched =
+        indirectFigures(renderView(scene, "above", noMarch, W, H, 120), truth.direct, truth.referenceFinal);
     std::printf("parapet: indirect ratio of means %.3f marched, %.3f without the march; relL1 %.1f / %.1f %%\n",
                 marched.ratio, unmarched.ratio, 100.0 * marched.relL1, 100.0 * unmarched.relL1);
     EXPECT_GT(unmarched.ratio, 1.1);  // the scene does what it is built for
