@@ -146,6 +146,8 @@ void marchOccluded(vec2 a, vec2 b, float hY, vec3 X, vec3 nX, vec3 Y0, vec3 n0, 
                 float hi2 = eyeDepthCurrent(d2);  // the surface's back: behind it the segment passes
                 in0 = in0 && zP0 < hi2;
                 in1 = in1 && zP1 < hi2;
+                cross0 = cross0 && zP0 < hi2;  // behind the surface's back too: it passed behind, not through
+                cross1 = cross1 && zP1 < hi2;
             }
         }
 #endif
