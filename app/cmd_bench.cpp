@@ -94,7 +94,7 @@ CommandRegistrar registrar("bench", "Speed against error: sweep configurations a
     sub.add_option("--suite", a->suite, "standard (atrium and Cornell box sweep) or hard (the hard GI scenes of assets/hard: "
                                         "indirect, one-bounce, leak, furnace, scale figures; default configs: default)")
         ->capture_default_str()->check(CLI::IsMember({"standard", "hard"}));
-    sub.add_option("--hard-scenes", a->hardScenes, "--suite hard: comma-separated scenes (offscreen_light, thin_wall, hidden_emitter, sun_patch, furnace, occluder; default all)");
+    sub.add_option("--hard-scenes", a->hardScenes, "--suite hard: comma-separated scenes (" + bench::hardSceneList() + "; default all)");
     sub.add_option("--scales", a->scales, "--suite hard: comma-separated scales among 1, 0.001, 1000")->capture_default_str();
     sub.add_option("--one-bounce-spp", a->oneBounceSpp, "--suite hard: samples per pixel of the 1-bounce references")->capture_default_str()->check(CLI::Range(4, 1 << 20));
     sub.add_option("--one-bounce-frames", a->oneBounceFrames, "--suite hard: frames of the one-bounce runs (no feedback to converge)")->capture_default_str()->check(CLI::Range(1, 10000));

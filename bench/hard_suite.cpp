@@ -216,6 +216,15 @@ void log(const HardOptions& o, const std::string& s) {
 
 }  // namespace
 
+std::string hardSceneList() {
+    std::vector<std::string> names;
+    for (const View& v : views())
+        if (std::find(names.begin(), names.end(), v.scene) == names.end()) names.push_back(v.scene);
+    std::string list;
+    for (const auto& n : names) list += (list.empty() ? "" : ", ") + n;
+    return list;
+}
+
 std::vector<std::pair<std::string, std::string>> hardViews() {
     std::vector<std::pair<std::string, std::string>> v;
     for (const View& x : views()) v.push_back({x.scene, x.camera});
@@ -236,7 +245,7 @@ HardResult runHardSuite(const HardOptions& options) {
     for (const auto& s : o.scenes) {
         bool known = false;
         for (const View& v : views()) known |= v.scene == s;
-        if (!known) throw std::runtime_error("bench: unknown hard scene '" + s + "' (offscreen_light, thin_wall, hidden_emitter, sun_patch, furnace, occluder)");
+        if (!known) throw std::runtime_error("bench: unknown hard scene '" + s + "' (" + hardSceneList() + ")");
     }
     std::vector<BenchConfig> configs;
     const std::vector<std::string> names = o.configs.empty() ? std::vector<std::string>{"default"} : o.configs;

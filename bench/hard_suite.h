@@ -13,6 +13,9 @@
 
 namespace deepgi::bench {
 
+// The suite's scenes (base names, in its order), comma-separated: for --help and error messages.
+std::string hardSceneList();
+
 struct HardOptions {
     std::vector<std::string> scenes;             // base names (offscreen_light, ...); empty = all
     std::vector<double> scales = {1.0, 0.001, 1000.0};
