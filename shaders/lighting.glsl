@@ -21,7 +21,9 @@ GpuLight lightAt(int i) {
     return uLights[i];
 #endif
 }
+#ifndef DEEPGI_LIGHT_COUNT
 uniform int uLightCount;
+#endif
 uniform float uShadowBias;  // in shadow-map texels
 uniform sampler2DArrayShadow uShadowMaps;
 uniform samplerCubeArrayShadow uShadowCubes;
@@ -58,35 +60,53 @@ float shadowFactor(GpuLight L, vec3 P, vec3 n, vec3 toLight, float dist) {
     return texture(uShadowMaps, vec4(s.xy, float(layer), s.z));
 }
 
+// Adds light L's shadowed irradiance on the surface at P with unit normal n to E.
+void addLightIrradiance(GpuLight L, vec3 P, vec3 n, inout vec3 E) {
+    int type = int(L.radiance.w);
+    vec3 toLight;
+    float dist;
+    float atten = 1.0;
+    if (type == 0) {
+        toLight = -L.direction.xyz;
+        dist = 1e30;
+    } else {
+        vec3 d = L.position.xyz - P;
+        float d2 = dot(d, d);
+        dist = sqrt(d2);
+        toLight = dist > 0.0 ? d / dist : vec3(0.0, 1.0, 0.0);
+        atten = rangeWindow(dist, L.position.w) / max(d2, 1e-20);  // guards only 0 (scale-free; see lighting.cpp)
+        if (type == 2) {
+            float cd = dot(L.direction.xyz, -toLight);
+            float t = clamp((cd - L.direction.w) / max(L.params.x - L.direction.w, 1e-4), 0.0, 1.0);
+            atten *= t * t;
+        }
+    }
+    float cosT = dot(n, toLight);
+    if (cosT <= 0.0 || atten <= 0.0) return;
+    E += L.radiance.rgb * atten * cosT * shadowFactor(L, P, n, toLight, dist);
+}
+
+// DEEPGI_LIGHT_COUNT (kUnrolledLights or fewer lights, all in the block): one copy of the per-light code for each,
+// with a constant index. llvmpipe loads a block member at a variable index once per lane, and runs the loop's mask
+// logic around it: with the sun alone the loop cost a fifth of the composite.
+#if defined(DEEPGI_LIGHT_COUNT) && DEEPGI_LIGHT_COUNT > 4
+#error DEEPGI_LIGHT_COUNT above the four copies of the per-light code (kUnrolledLights)
+#endif
+
 // Shadowed irradiance on the surface at P with unit normal n.
 vec3 directIrradiance(vec3 P, vec3 n) {
     vec3 E = vec3(0.0);
+#ifdef DEEPGI_LIGHT_COUNT
+    if (DEEPGI_LIGHT_COUNT > 0) addLightIrradiance(uLightBlock[0], P, n, E);
+    if (DEEPGI_LIGHT_COUNT > 1) addLightIrradiance(uLightBlock[1], P, n, E);
+    if (DEEPGI_LIGHT_COUNT > 2) addLightIrradiance(uLightBlock[2], P, n, E);
+    if (DEEPGI_LIGHT_COUNT > 3) addLightIrradiance(uLightBlock[3], P, n, E);
+#else
     for (int i = 0; i < MAX_LIGHTS; ++i) {
         if (i >= uLightCount) break;
-        GpuLight L = lightAt(i);
-        int type = int(L.radiance.w);
-        vec3 toLight;
-        float dist;
-        float atten = 1.0;
-        if (type == 0) {
-            toLight = -L.direction.xyz;
-            dist = 1e30;
-        } else {
-            vec3 d = L.position.xyz - P;
-            float d2 = dot(d, d);
-            dist = sqrt(d2);
-            toLight = dist > 0.0 ? d / dist : vec3(0.0, 1.0, 0.0);
-            atten = rangeWindow(dist, L.position.w) / max(d2, 1e-20);  // guards only 0 (scale-free; see lighting.cpp)
-            if (type == 2) {
-                float cd = dot(L.direction.xyz, -toLight);
-                float t = clamp((cd - L.direction.w) / max(L.params.x - L.direction.w, 1e-4), 0.0, 1.0);
-                atten *= t * t;
-            }
-        }
-        float cosT = dot(n, toLight);
-        if (cosT <= 0.0 || atten <= 0.0) continue;
-        E += L.radiance.rgb * atten * cosT * shadowFactor(L, P, n, toLight, dist);
+        addLightIrradiance(lightAt(i), P, n, E);
     }
+#endif
     return E;
 }
 
@@ -113,23 +133,35 @@ vec3 lightArrival(GpuLight L, vec3 P, out vec3 toLight, out float dist) {
     return L.radiance.rgb * atten;
 }
 
+// Adds light L's shadowed irradiance on the surface (P, unit n) to E and, where specular, its GGX radiance towards
+// v to Ls.
+void addLightWithSpecular(GpuLight L, vec3 P, vec3 n, vec3 v, vec4 spec, bool specular, inout vec3 E, inout vec3 Ls) {
+    vec3 toLight;
+    float dist;
+    vec3 radiance = lightArrival(L, P, toLight, dist);
+    float cosT = dot(n, toLight);
+    if (cosT <= 0.0 || all(lessThanEqual(radiance, vec3(0.0)))) return;
+    vec3 Ei = radiance * cosT * shadowFactor(L, P, n, toLight, dist);
+    E += Ei;
+    if (specular) Ls += ggxSpecular(n, v, toLight, spec.rgb, spec.a) * Ei;
+}
+
 // Shadowed irradiance E on the surface (P, unit n) and, in Ls, the specular radiance towards v (unit, to the
 // viewer) of F0 = spec.rgb, roughness spec.a: sum over lights of F D V * radiance * cos, one shadow lookup each.
 vec3 directIrradianceAndSpecular(vec3 P, vec3 n, vec3 v, vec4 spec, out vec3 Ls) {
     vec3 E = vec3(0.0);
     Ls = vec3(0.0);
     bool specular = any(greaterThan(spec.rgb, vec3(0.0)));
+#ifdef DEEPGI_LIGHT_COUNT
+    if (DEEPGI_LIGHT_COUNT > 0) addLightWithSpecular(uLightBlock[0], P, n, v, spec, specular, E, Ls);
+    if (DEEPGI_LIGHT_COUNT > 1) addLightWithSpecular(uLightBlock[1], P, n, v, spec, specular, E, Ls);
+    if (DEEPGI_LIGHT_COUNT > 2) addLightWithSpecular(uLightBlock[2], P, n, v, spec, specular, E, Ls);
+    if (DEEPGI_LIGHT_COUNT > 3) addLightWithSpecular(uLightBlock[3], P, n, v, spec, specular, E, Ls);
+#else
     for (int i = 0; i < MAX_LIGHTS; ++i) {
         if (i >= uLightCount) break;
-        GpuLight L = lightAt(i);
-        vec3 toLight;
-        float dist;
-        vec3 radiance = lightArrival(L, P, toLight, dist);
-        float cosT = dot(n, toLight);
-        if (cosT <= 0.0 || all(lessThanEqual(radiance, vec3(0.0)))) continue;
-        vec3 Ei = radiance * cosT * shadowFactor(L, P, n, toLight, dist);
-        E += Ei;
-        if (specular) Ls += ggxSpecular(n, v, toLight, spec.rgb, spec.a) * Ei;
+        addLightWithSpecular(lightAt(i), P, n, v, spec, specular, E, Ls);
     }
+#endif
     return E;
 }

@@ -137,3 +137,70 @@ TEST_F(GLTest, ShadowTexturesOnlyForLightTypesPresent) {
     EXPECT_FALSE(r.textures().has("Shadow Cubes"));
     EXPECT_TRUE(r.textures().has("Shadow Maps"));
 }
+
+// Several lights add up: the direct light of the first n of six lights (sun, points, spots) is the sum of each
+// alone. Up to kUnrolledLights lights the shaders have one copy of the per-light code for each light (a copy that
+// read the wrong light, or a count off by one, breaks the sum); above it they loop. Tolerance: the final image is
+// half float (relative step 2^-11), and the sum of n of them rounds n times. Once matte, once half metallic (the
+// per-light code with the specular lobe).
+TEST_F(GLTest, DirectLightOfSeveralLightsIsTheSumOfEachAlone) {
+    std::vector<Light> lights(6);
+    lights[0].type = LightType::Directional;
+    lights[0].direction = glm::normalize(glm::vec3(0.6f, -1.0f, -0.3f));
+    lights[0].intensity = 1.5f;
+    lights[1].type = LightType::Point;
+    lights[1].position = glm::vec3(1.2f, 2.0f, -0.8f);
+    lights[1].intensity = 6.0f;
+    lights[1].color = glm::vec3(1.0f, 0.6f, 0.3f);
+    lights[2].type = LightType::Spot;
+    lights[2].position = glm::vec3(-1.5f, 3.0f, -1.0f);
+    lights[2].direction = glm::normalize(glm::vec3(0.45f, -1.0f, 0.3f));
+    lights[2].intensity = 20.0f;
+    lights[2].innerConeAngle = 0.35f;
+    lights[2].outerConeAngle = 0.6f;
+    lights[3].type = LightType::Point;
+    lights[3].position = glm::vec3(-1.0f, 1.5f, 1.5f);
+    lights[3].intensity = 4.0f;
+    lights[3].color = glm::vec3(0.3f, 0.6f, 1.0f);
+    lights[4].type = LightType::Directional;
+    lights[4].direction = glm::normalize(glm::vec3(-0.5f, -1.0f, 0.4f));
+    lights[4].intensity = 0.7f;
+    lights[5].type = LightType::Point;
+    lights[5].position = glm::vec3(1.5f, 0.6f, 1.2f);
+    lights[5].intensity = 2.0f;
+    ASSERT_LT(kUnrolledLights, 5);  // the counts below reach past it
+    Settings s;
+    s.indirect = false;
+    for (bool metal : {false, true}) {
+        auto render = [&](const std::vector<Light>& ls) {
+            auto scene = shadowScene(ls[0]);
+            scene->lights = ls;
+            if (metal) {
+                scene->materials[0].metallic = 0.5f;
+                scene->materials[0].roughness = 0.4f;
+            }
+            Renderer r;
+            r.setScene(scene);
+            r.resize(96, 72);
+            r.setCamera(selectCamera(*scene, "cam"));
+            r.render(s);
+            return r.readFinalRadiance();
+        };
+        std::vector<FloatImage> alone;
+        for (const Light& l : lights) alone.push_back(render({l}));
+        for (int n : {2, 3, 4, 5, 6}) {
+            const FloatImage together = render(std::vector<Light>(lights.begin(), lights.begin() + n));
+            double worst = 0.0, total = 0.0;
+            for (size_t i = 0; i < together.pixels.size(); ++i) {
+                if (together.channels == 4 && i % 4 == 3) continue;  // alpha
+                double sum = 0.0;
+                for (int k = 0; k < n; ++k) sum += alone[k].pixels[i];
+                worst = std::max(worst, std::abs(double(together.pixels[i]) - sum) / std::max(sum, 1e-3));
+                total += sum;
+            }
+            EXPECT_GT(total, 0.0);
+            EXPECT_LT(worst, double(n) * 1e-3) << n << (metal ? " lights, half metallic" : " lights, matte")
+                                               << ": the largest relative difference from the sum of each alone";
+        }
+    }
+}

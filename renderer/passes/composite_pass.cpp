@@ -48,8 +48,7 @@ void CompositePass::execute(FrameContext& ctx) {
     if (ctx.config.specular) defines.push_back("SPECULAR");
     if (ctx.config.sky) defines.push_back("DEEPGI_SKY");
     if (ctx.config.seedComposite) defines.push_back("DEEPGI_SEED_COMPOSITE");
-    // Both branches of lightAt() run on llvmpipe: the storage buffer only when some light is not in the block.
-    if (ctx.lightCount <= kBlockLights) defines.push_back("DEEPGI_BLOCK_LIGHTS_ONLY");
+    addLightingDefines(ctx, defines);
     if (ctx.config.sky) bindProbeUniforms(ctx);
     // Direct light only: a variant without the upsample (llvmpipe ran it under the uniform test, 2/3 of the pass).
     if (!ctx.config.indirect) defines.push_back("DEEPGI_NO_INDIRECT");

@@ -166,6 +166,13 @@ int FrameContext::radiosityHeight() const {
     return h;
 }
 
+void addLightingDefines(const FrameContext& ctx, std::vector<std::string>& defines) {
+    // Both branches of lightAt() run on llvmpipe: the storage buffer only when some light is not in the block.
+    if (ctx.lightCount <= kBlockLights) defines.push_back("DEEPGI_BLOCK_LIGHTS_ONLY");
+    // A few lights: the per-light code once for each, with constant indices (lighting.glsl says why).
+    if (ctx.lightCount <= kUnrolledLights) defines.push_back("DEEPGI_LIGHT_COUNT " + std::to_string(ctx.lightCount));
+}
+
 void LightingUniforms::set(const FrameContext& ctx) const {
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, ctx.lightBuffer);
     glBindBufferRange(GL_UNIFORM_BUFFER, 3, ctx.lightBuffer, 0, GLsizeiptr(kBlockLights * kGpuLightBytes));

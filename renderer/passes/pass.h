@@ -198,9 +198,13 @@ struct FrameContext {
 struct LightingUniforms {
     explicit LightingUniforms(gl::Program& p) : count(p, "uLightCount"), shadowBias(p, "uShadowBias") {}
     void set(const FrameContext& ctx) const;  // also binds the light buffer
-    gl::Uniform<int> count;
+    gl::OptionalUniform<int> count;  // absent where the count is a define (lightingDefines)
     gl::Uniform<float> shadowBias;
 };
+
+// The defines of a pass that includes lighting.glsl, from this frame's light count: DEEPGI_BLOCK_LIGHTS_ONLY where
+// every light is in the uniform block, and DEEPGI_LIGHT_COUNT n where there are at most kUnrolledLights of them.
+void addLightingDefines(const FrameContext& ctx, std::vector<std::string>& defines);
 
 // The optional shadow-map reads of a pass that includes lighting.glsl.
 void readShadowMaps(PassTable& t);
