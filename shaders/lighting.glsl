@@ -60,30 +60,50 @@ float shadowFactor(GpuLight L, vec3 P, vec3 n, vec3 toLight, float dist) {
     return texture(uShadowMaps, vec4(s.xy, float(layer), s.z));
 }
 
-// Adds light L's shadowed irradiance on the surface at P with unit normal n to E.
-void addLightIrradiance(GpuLight L, vec3 P, vec3 n, inout vec3 E) {
+// The light's radiance reaching P (colour x intensity x distance/range/cone attenuation) and the unit direction
+// to it.
+vec3 lightArrival(GpuLight L, vec3 P, out vec3 toLight, out float dist) {
     int type = int(L.radiance.w);
-    vec3 toLight;
-    float dist;
-    float atten = 1.0;
     if (type == 0) {
         toLight = -L.direction.xyz;
         dist = 1e30;
-    } else {
-        vec3 d = L.position.xyz - P;
-        float d2 = dot(d, d);
-        dist = sqrt(d2);
-        toLight = dist > 0.0 ? d / dist : vec3(0.0, 1.0, 0.0);
-        atten = rangeWindow(dist, L.position.w) / max(d2, 1e-20);  // guards only 0 (scale-free; see lighting.cpp)
-        if (type == 2) {
-            float cd = dot(L.direction.xyz, -toLight);
-            float t = clamp((cd - L.direction.w) / max(L.params.x - L.direction.w, 1e-4), 0.0, 1.0);
-            atten *= t * t;
-        }
+        return L.radiance.rgb;
     }
+    vec3 d = L.position.xyz - P;
+    float d2 = dot(d, d);
+    dist = sqrt(d2);
+    toLight = dist > 0.0 ? d / dist : vec3(0.0, 1.0, 0.0);
+    float atten = rangeWindow(dist, L.position.w) / max(d2, 1e-20);  // guards only 0 (scale-free; see lighting.cpp)
+    if (type == 2) {
+        float cd = dot(L.direction.xyz, -toLight);
+        float t = clamp((cd - L.direction.w) / max(L.params.x - L.direction.w, 1e-4), 0.0, 1.0);
+        atten *= t * t;
+    }
+    return L.radiance.rgb * atten;
+}
+
+// Adds light L's shadowed irradiance on the surface at P with unit normal n to E.
+void addLightIrradiance(GpuLight L, vec3 P, vec3 n, inout vec3 E) {
+    vec3 toLight;
+    float dist;
+    vec3 radiance = lightArrival(L, P, toLight, dist);
     float cosT = dot(n, toLight);
-    if (cosT <= 0.0 || atten <= 0.0) return;
-    E += L.radiance.rgb * atten * cosT * shadowFactor(L, P, n, toLight, dist);
+    if (cosT <= 0.0 || all(lessThanEqual(radiance, vec3(0.0)))) return;
+    E += radiance * cosT * shadowFactor(L, P, n, toLight, dist);
+}
+
+// ---- With the GGX specular lobe (glTF metallic-roughness; brdf.glsl) ----
+// Adds light L's shadowed irradiance on the surface (P, unit n) to E and, where specular, its GGX radiance towards
+// v to Ls.
+void addLightWithSpecular(GpuLight L, vec3 P, vec3 n, vec3 v, vec4 spec, bool specular, inout vec3 E, inout vec3 Ls) {
+    vec3 toLight;
+    float dist;
+    vec3 radiance = lightArrival(L, P, toLight, dist);
+    float cosT = dot(n, toLight);
+    if (cosT <= 0.0 || all(lessThanEqual(radiance, vec3(0.0)))) return;
+    vec3 Ei = radiance * cosT * shadowFactor(L, P, n, toLight, dist);
+    E += Ei;
+    if (specular) Ls += ggxSpecular(n, v, toLight, spec.rgb, spec.a) * Ei;
 }
 
 // DEEPGI_LIGHT_COUNT (kUnrolledLights or fewer lights, all in the block): one copy of the per-light code for each,
@@ -108,42 +128,6 @@ vec3 directIrradiance(vec3 P, vec3 n) {
     }
 #endif
     return E;
-}
-
-// ---- Direct light with the GGX specular lobe (glTF metallic-roughness; brdf.glsl) ----
-// The light's radiance reaching P (colour x intensity x distance/range/cone attenuation) and the unit direction
-// to it; the same terms as directIrradiance's loop.
-vec3 lightArrival(GpuLight L, vec3 P, out vec3 toLight, out float dist) {
-    int type = int(L.radiance.w);
-    if (type == 0) {
-        toLight = -L.direction.xyz;
-        dist = 1e30;
-        return L.radiance.rgb;
-    }
-    vec3 d = L.position.xyz - P;
-    float d2 = dot(d, d);
-    dist = sqrt(d2);
-    toLight = dist > 0.0 ? d / dist : vec3(0.0, 1.0, 0.0);
-    float atten = rangeWindow(dist, L.position.w) / max(d2, 1e-20);
-    if (type == 2) {
-        float cd = dot(L.direction.xyz, -toLight);
-        float t = clamp((cd - L.direction.w) / max(L.params.x - L.direction.w, 1e-4), 0.0, 1.0);
-        atten *= t * t;
-    }
-    return L.radiance.rgb * atten;
-}
-
-// Adds light L's shadowed irradiance on the surface (P, unit n) to E and, where specular, its GGX radiance towards
-// v to Ls.
-void addLightWithSpecular(GpuLight L, vec3 P, vec3 n, vec3 v, vec4 spec, bool specular, inout vec3 E, inout vec3 Ls) {
-    vec3 toLight;
-    float dist;
-    vec3 radiance = lightArrival(L, P, toLight, dist);
-    float cosT = dot(n, toLight);
-    if (cosT <= 0.0 || all(lessThanEqual(radiance, vec3(0.0)))) return;
-    vec3 Ei = radiance * cosT * shadowFactor(L, P, n, toLight, dist);
-    E += Ei;
-    if (specular) Ls += ggxSpecular(n, v, toLight, spec.rgb, spec.a) * Ei;
 }
 
 // Shadowed irradiance E on the surface (P, unit n) and, in Ls, the specular radiance towards v (unit, to the
