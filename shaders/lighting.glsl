@@ -106,21 +106,19 @@ void addLightWithSpecular(GpuLight L, vec3 P, vec3 n, vec3 v, vec4 spec, bool sp
     if (specular) Ls += ggxSpecular(n, v, toLight, spec.rgb, spec.a) * Ei;
 }
 
-// DEEPGI_LIGHT_COUNT (kUnrolledLights or fewer lights, all in the block): one copy of the per-light code for each,
-// with a constant index. llvmpipe loads a block member at a variable index once per lane, and runs the loop's mask
-// logic around it: with the sun alone the loop cost a fifth of the composite.
-#if defined(DEEPGI_LIGHT_COUNT) && DEEPGI_LIGHT_COUNT > 4
-#error DEEPGI_LIGHT_COUNT above the four copies of the per-light code (kUnrolledLights)
-#endif
+// DEEPGI_LIGHT_COUNT (kUnrolledLights or fewer lights, all in the block): the light loop has a compile-time length,
+// so the compiler unrolls it and every light is read at a constant index. llvmpipe loads a block member at a
+// variable index once per lane: with the sun alone the uniform-count loop cost a fifth of the composite.
+const int MAX_UNROLLED_LIGHTS = 4;  // kUnrolledLights (test_shader_loops checks)
 
 // Shadowed irradiance on the surface at P with unit normal n.
 vec3 directIrradiance(vec3 P, vec3 n) {
     vec3 E = vec3(0.0);
 #ifdef DEEPGI_LIGHT_COUNT
-    if (DEEPGI_LIGHT_COUNT > 0) addLightIrradiance(uLightBlock[0], P, n, E);
-    if (DEEPGI_LIGHT_COUNT > 1) addLightIrradiance(uLightBlock[1], P, n, E);
-    if (DEEPGI_LIGHT_COUNT > 2) addLightIrradiance(uLightBlock[2], P, n, E);
-    if (DEEPGI_LIGHT_COUNT > 3) addLightIrradiance(uLightBlock[3], P, n, E);
+    for (int i = 0; i < MAX_UNROLLED_LIGHTS; ++i) {
+        if (i >= DEEPGI_LIGHT_COUNT) break;
+        addLightIrradiance(uLightBlock[i], P, n, E);
+    }
 #else
     for (int i = 0; i < MAX_LIGHTS; ++i) {
         if (i >= uLightCount) break;
@@ -137,10 +135,10 @@ vec3 directIrradianceAndSpecular(vec3 P, vec3 n, vec3 v, vec4 spec, out vec3 Ls)
     Ls = vec3(0.0);
     bool specular = any(greaterThan(spec.rgb, vec3(0.0)));
 #ifdef DEEPGI_LIGHT_COUNT
-    if (DEEPGI_LIGHT_COUNT > 0) addLightWithSpecular(uLightBlock[0], P, n, v, spec, specular, E, Ls);
-    if (DEEPGI_LIGHT_COUNT > 1) addLightWithSpecular(uLightBlock[1], P, n, v, spec, specular, E, Ls);
-    if (DEEPGI_LIGHT_COUNT > 2) addLightWithSpecular(uLightBlock[2], P, n, v, spec, specular, E, Ls);
-    if (DEEPGI_LIGHT_COUNT > 3) addLightWithSpecular(uLightBlock[3], P, n, v, spec, specular, E, Ls);
+    for (int i = 0; i < MAX_UNROLLED_LIGHTS; ++i) {
+        if (i >= DEEPGI_LIGHT_COUNT) break;
+        addLightWithSpecular(uLightBlock[i], P, n, v, spec, specular, E, Ls);
+    }
 #else
     for (int i = 0; i < MAX_LIGHTS; ++i) {
         if (i >= uLightCount) break;

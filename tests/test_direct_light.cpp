@@ -139,8 +139,8 @@ TEST_F(GLTest, ShadowTexturesOnlyForLightTypesPresent) {
 }
 
 // Several lights add up: the direct light of the first n of six lights (sun, points, spots) is the sum of each
-// alone. Up to kUnrolledLights lights the shaders have one copy of the per-light code for each light (a copy that
-// read the wrong light, or a count off by one, breaks the sum); above it they loop. Tolerance: the final image is
+// alone. Up to kUnrolledLights lights the shaders get the count as a define and unroll their light loop (a wrong
+// index, or a count off by one, breaks the sum); above it they loop to a uniform count. Tolerance: the final image is
 // half float (relative step 2^-11), and the sum of n of them rounds n times. Once matte, once half metallic (the
 // per-light code with the specular lobe).
 TEST_F(GLTest, DirectLightOfSeveralLightsIsTheSumOfEachAlone) {

@@ -160,6 +160,8 @@ TEST(ShaderLoops, BoundsCoverTheSettingsRanges) {
     EXPECT_GE(double(constants["MAX_BLUR_RADIUS"]), deepgi::findSetting("blur.radius")->max);
     EXPECT_GE(double(constants["MAX_VISIBILITY_STEPS"]), deepgi::findSetting("radiosity.visibility_steps")->max);
     EXPECT_EQ(constants["MAX_LIGHTS"], deepgi::kMaxGpuLights);
+    // The unrolled light loop's length: a smaller one would drop the lights past it.
+    EXPECT_EQ(constants["MAX_UNROLLED_LIGHTS"], deepgi::kUnrolledLights);
     // Mip levels: a texture of GL's largest size has log2(size) + 1 levels.
     EXPECT_GE(constants["MAX_MIP_LEVELS"], 15);
 }

@@ -60,7 +60,6 @@ void InputRadiancePass::execute(FrameContext& ctx) {
     if (ctx.config.probes) defines.push_back("DEEPGI_PROBES");
     if (ctx.config.occlusion) defines.push_back("OCCLUSION");
     if (ctx.config.sky) defines.push_back("DEEPGI_SKY");
-    // (llvmpipe: DEEPGI_BLOCK_LIGHTS_ONLY took the pass to 0.89 x with the sun alone.)
     addLightingDefines(ctx, defines);
     if (ctx.config.probes || ctx.config.sky) bindProbeUniforms(ctx);
     // Layer 1 with a history takes last frame's gathered light, the rest the probes': two variants, since llvmpipe

@@ -198,7 +198,7 @@ struct FrameContext {
 struct LightingUniforms {
     explicit LightingUniforms(gl::Program& p) : count(p, "uLightCount"), shadowBias(p, "uShadowBias") {}
     void set(const FrameContext& ctx) const;  // also binds the light buffer
-    gl::OptionalUniform<int> count;  // absent where the count is a define (lightingDefines)
+    gl::OptionalUniform<int> count;  // absent where the count is a define (addLightingDefines)
     gl::Uniform<float> shadowBias;
 };
 

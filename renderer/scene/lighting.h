@@ -14,8 +14,8 @@ inline constexpr int kMaxGpuLights = 16384;
 // The first lights are also read through a uniform block (shaders/lighting.glsl MAX_BLOCK_LIGHTS): llvmpipe reads a
 // uniform block once per draw's SIMD batch, a storage buffer per lane (the light loop was 2/3 of the input radiance).
 inline constexpr int kBlockLights = 32;
-// Up to this many lights the shaders get the count as a define and the per-light code once per light
-// (shaders/lighting.glsl has that many copies).
+// Up to this many lights the shaders get the count as a define, and their light loop a compile-time length that the
+// compiler unrolls (shaders/lighting.glsl MAX_UNROLLED_LIGHTS).
 inline constexpr int kUnrolledLights = 4;
 inline constexpr int kGpuLightBytes = 128;  // sizeof(GpuLight), std430 = std140 for its vec4s and mat4
 
