@@ -1,6 +1,7 @@
 // Half-resolution radiosity (radiosity.resolution): the gather, blur and temporal filter on a grid of a quarter of
 // the pixels, upsampled by depth and normal in the composite, checked against the same frames at full resolution.
 #include "bench/metrics.h"
+#include "renderer/passes/bilateral_blur_pass.h"
 #include "renderer/core/image_compare.h"
 #include "gl_fixture.h"
 
@@ -67,6 +68,22 @@ TEST_F(GLTest, HalfResolutionRadiosityFollowsFullResolution) {
     EXPECT_GT(full.indirect.width, 0);
     EXPECT_NEAR(f.ratioOfMeans, 1.0, 0.03);
     EXPECT_LT(f.blockRelL1, 0.10);
+}
+
+// blur.radius counts full-resolution pixels: a grid of 1/d takes the fewest of its own taps that reach as far on
+// screen (taps * d >= radius, (taps - 1) * d < radius), so half resolution's blur keeps full resolution's footprint
+// instead of doubling it (5 -> 3 taps; session 23 of docs/BENCHMARKS.md: hidden_emitter 8.97 -> 8.61 %).
+TEST(BlurTaps, ReachTheRadiusInFullResolutionPixels) {
+    for (int d = 1; d <= 2; ++d)
+        for (int radius = 1; radius <= 6; ++radius) {
+            const int taps = blurTaps(radius, d);
+            EXPECT_GE(taps * d, radius) << radius << " at 1/" << d;
+            EXPECT_LT((taps - 1) * d, radius) << radius << " at 1/" << d;
+            EXPECT_EQ(blurKernel(taps).size(), std::size_t(taps + 1));
+        }
+    EXPECT_EQ(blurTaps(5, 1), 5);
+    EXPECT_EQ(blurTaps(5, 2), 3);
+    EXPECT_EQ(blurTaps(1, 2), 1);
 }
 
 }  // namespace deepgi::test

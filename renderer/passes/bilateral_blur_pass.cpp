@@ -17,6 +17,11 @@ std::vector<float> blurKernel(int radius) {
     }
 }
 
+int blurTaps(int radius, int radiosityDownsample) {
+    const int d = std::max(1, radiosityDownsample);
+    return std::clamp((radius + d - 1) / d, 1, 6);
+}
+
 void BilateralBlurPass::table(const PipelineConfig& c, PassTable& t) const {
     t.read("Radiosity Geometry", "uGeometry");
     t.update("Output Radiance", "uSource").after(c.temporalFirst && c.temporal ? "Temporal blend" : "Radiosity gather");
@@ -28,10 +33,11 @@ void BilateralBlurPass::execute(FrameContext& ctx) {
     const RadiositySettings& r = ctx.settings;
     const GLuint scratch = ctx.texture("Radiosity Scratch"), output = ctx.texture("Output Radiance");
     Program& prog = program_.get(ctx.shaders, {"fullscreen.vert", "", "bilateral_blur.frag", "", {}});
-    std::vector<float> kernel = blurKernel(b.blurRadius);
+    const int taps = blurTaps(b.blurRadius, ctx.config.radiosityDownsample);
+    std::vector<float> kernel = blurKernel(taps);
     kernel.resize(7, 0.0f);
     prog.kernel.set(kernel.data());
-    prog.radius.set(std::clamp(b.blurRadius, 1, 6));
+    prog.radius.set(taps);
     prog.step.set(std::max(1, b.blurStep));
     prog.edgeSharpness.set(b.edgeSharpness);
     prog.monotonic.set(b.monotonicWeights);

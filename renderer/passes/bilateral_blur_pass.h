@@ -29,4 +29,10 @@ private:
 // Gaussian weights kernel[0..radius] of G3D's blur for radius 1..6.
 std::vector<float> blurKernel(int radius);
 
+// Taps on each side at the radiosity resolution: blur.radius counts full-resolution pixels, so a grid of
+// 1/downsample takes ceil(radius / downsample) taps of its own pixels (half: 5 -> 3) and keeps about the same
+// footprint on screen; the radius's taps at half resolution spread twice as far and flatten the indirect light's
+// peaks (hidden_emitter's ceiling by the crease, docs/BENCHMARKS.md session 23) for 1.4 x the blur's time.
+int blurTaps(int radius, int radiosityDownsample);
+
 }  // namespace deepgi
