@@ -6,7 +6,7 @@
 uniform sampler2D uGeometry;  // Radiosity Geometry: each grid pixel's world position and normal, from the gather
 uniform sampler2D uSource;
 uniform ivec2 uAxis;
-const int MAX_BLUR_RADIUS = 6;  // blur.radius
+const int MAX_BLUR_RADIUS = 6;  // taps of the radiosity grid on each side (blurTaps of blur.radius; kMaxBlurTaps)
 uniform int uRadius;     // 1..MAX_BLUR_RADIUS
 uniform int uStep;
 uniform float uEdgeSharpness;

@@ -3,6 +3,7 @@
 // uniform count, so no uniform value can make a pass run unbounded. The constants are at least the maxima of the
 // settings that feed the counts, so the break, not the bound, ends every loop a setting allows.
 #include "renderer/core/settings.h"
+#include "renderer/passes/bilateral_blur_pass.h"
 #include "renderer/scene/lighting.h"
 
 #include <gtest/gtest.h>
@@ -158,6 +159,8 @@ TEST(ShaderLoops, BoundsCoverTheSettingsRanges) {
                 constants.count("MAX_VISIBILITY_STEPS"));
     EXPECT_GE(double(constants["MAX_SPIRAL_TAPS"]), deepgi::findSetting("radiosity.samples")->max);
     EXPECT_GE(double(constants["MAX_BLUR_RADIUS"]), deepgi::findSetting("blur.radius")->max);
+    // The taps the blur pass asks for and the weights it uploads (kMaxBlurTaps + 1 of them for uKernel[MAX_BLUR_RADIUS + 1]).
+    EXPECT_EQ(constants["MAX_BLUR_RADIUS"], deepgi::kMaxBlurTaps);
     EXPECT_GE(double(constants["MAX_VISIBILITY_STEPS"]), deepgi::findSetting("radiosity.visibility_steps")->max);
     EXPECT_EQ(constants["MAX_LIGHTS"], deepgi::kMaxGpuLights);
     // The unrolled light loop's length: a smaller one would drop the lights past it.

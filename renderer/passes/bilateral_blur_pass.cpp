@@ -7,7 +7,7 @@
 namespace deepgi {
 
 std::vector<float> blurKernel(int radius) {
-    switch (std::clamp(radius, 1, 6)) {
+    switch (std::clamp(radius, 1, kMaxBlurTaps)) {
     case 1: return {0.5f, 0.25f};
     case 2: return {0.153170f, 0.144893f, 0.122649f};
     case 3: return {0.153170f, 0.144893f, 0.122649f, 0.092902f};
@@ -19,7 +19,7 @@ std::vector<float> blurKernel(int radius) {
 
 int blurTaps(int radius, int radiosityDownsample) {
     const int d = std::max(1, radiosityDownsample);
-    return std::clamp((radius + d - 1) / d, 1, 6);
+    return std::clamp((radius + d - 1) / d, 1, kMaxBlurTaps);
 }
 
 void BilateralBlurPass::table(const PipelineConfig& c, PassTable& t) const {
@@ -35,7 +35,7 @@ void BilateralBlurPass::execute(FrameContext& ctx) {
     Program& prog = program_.get(ctx.shaders, {"fullscreen.vert", "", "bilateral_blur.frag", "", {}});
     const int taps = blurTaps(b.blurRadius, ctx.config.radiosityDownsample);
     std::vector<float> kernel = blurKernel(taps);
-    kernel.resize(7, 0.0f);
+    kernel.resize(kMaxBlurTaps + 1, 0.0f);
     prog.kernel.set(kernel.data());
     prog.radius.set(taps);
     prog.step.set(std::max(1, b.blurStep));

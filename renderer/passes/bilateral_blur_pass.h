@@ -26,13 +26,16 @@ private:
     gl::ProgramSlot<Program> program_;
 };
 
-// Gaussian weights kernel[0..radius] of G3D's blur for radius 1..6.
+// Most taps on each side of the centre: the shader's MAX_BLUR_RADIUS (ShaderLoops.BoundsCoverTheSettingsRanges).
+inline constexpr int kMaxBlurTaps = 6;
+
+// Gaussian weights kernel[0..radius] of G3D's blur for radius 1..kMaxBlurTaps.
 std::vector<float> blurKernel(int radius);
 
 // Taps on each side at the radiosity resolution: blur.radius counts full-resolution pixels, so a grid of
 // 1/downsample takes ceil(radius / downsample) taps of its own pixels (half: 5 -> 3) and keeps about the same
 // footprint on screen; the radius's taps at half resolution spread twice as far and flatten the indirect light's
-// peaks (hidden_emitter's ceiling by the crease, docs/BENCHMARKS.md session 23) for 1.4 x the blur's time.
+// peaks (hidden_emitter's ceiling by the crease, docs/BENCHMARKS.md sessions 23-24) for 1.35 x the blur's time.
 int blurTaps(int radius, int radiosityDownsample);
 
 }  // namespace deepgi
