@@ -209,11 +209,12 @@ PipelineConfig Renderer::makeConfig(const Settings& s) const {
                                    (s.layer2Prepass == Layer2Prepass::Auto && software && fragmentBound));
     c.ao = s.aoEnabled;
     c.compositeSkyDraw = software;
-    // The gather's finest tap level: its radiance, depth and normal are evaluated or drawn there, not finer.
-    // A frame too small for that level takes its coarsest (the textures' levels stop at one texel).
+    // The gather's finest tap level: its radiance, depth and normal are evaluated or drawn there, not finer. It
+    // follows the image's height (radiosity.min_mip_height), not the guard band's. A frame too small for that level
+    // takes its coarsest (the textures' levels stop at one texel).
     if (c.indirect) {
         const int coarsest = int(std::log2(double(std::max({frameWidth(), frameHeight(), 1}))));
-        c.tapLevel = std::clamp(s.minMip, 0, std::min(kMaxTapLevel, coarsest));
+        c.tapLevel = std::clamp(finestTapLevel(s.minMip, s.minMipHeight, height_), 0, std::min(kMaxTapLevel, coarsest));
     }
     if (c.indirect) {
         const bool half = s.radiosityResolution == RadiosityResolution::Half ||

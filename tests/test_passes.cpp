@@ -34,6 +34,41 @@ void fillTexture(GLuint tex, const glm::vec3& v) { glClearTexImage(tex, 0, GL_RG
 
 }  // namespace
 
+// radiosity.min_mip is the finest tap level up to radiosity.min_mip_height rows; each doubling of the height above
+// that makes it one level coarser, never past kMaxTapLevel; a height of 0 keeps min_mip at every height.
+TEST(FinestTapLevel, OneLevelCoarserPerDoublingAboveTheHeight) {
+    EXPECT_EQ(finestTapLevel(2, 180, 90), 2);
+    EXPECT_EQ(finestTapLevel(2, 180, 180), 2);
+    EXPECT_EQ(finestTapLevel(2, 180, 359), 2);
+    EXPECT_EQ(finestTapLevel(2, 180, 360), 3);
+    EXPECT_EQ(finestTapLevel(2, 180, 719), 3);
+    EXPECT_EQ(finestTapLevel(2, 180, 720), 4);
+    EXPECT_EQ(finestTapLevel(2, 180, 1080), 4);
+    EXPECT_EQ(finestTapLevel(3, 180, 2880), 5);  // 3 + 4 doublings, held at the coarsest level the gather reads
+    EXPECT_EQ(finestTapLevel(0, 1, 1 << 30), kMaxTapLevel);
+    EXPECT_EQ(finestTapLevel(2, 0, 100000), 2);
+    EXPECT_EQ(finestTapLevel(0, 100000, 4320), 0);
+}
+
+// The renderer draws layer 2 and evaluates the taps' radiance at that level of the image's height: a guard band
+// (gbuffer.guard_band) makes the frame taller (72 rows here, past 2 x 25) but not the image, and leaves the level alone.
+TEST_F(GLTest, TapLevelFollowsTheImageHeight) {
+    auto scene = layeredScene();
+    struct Case { int minMipHeight; float guard; int level; };
+    for (const Case& c : {Case{0, 0.0f, 2}, Case{24, 0.0f, 3}, Case{12, 0.0f, 4}, Case{25, 0.0f, 2}, Case{25, 0.25f, 2}}) {
+        auto renderer = rendererFor(scene, 64, 48, "cam");
+        Renderer& r = *renderer;
+        Settings s;
+        s.minMip = 2;
+        s.minMipHeight = c.minMipHeight;
+        s.guardBand = c.guard;
+        s.layer2Prepass = Layer2Prepass::On;  // layer 2 drawn alone, at the tap level
+        for (int i = 0; i < 2; ++i) r.render(s);
+        EXPECT_EQ(r.config().tapLevel, c.level) << "min_mip_height " << c.minMipHeight << " guard " << c.guard;
+        EXPECT_EQ(readLayer2(r, "Depth 2").level, c.level) << "min_mip_height " << c.minMipHeight;
+    }
+}
+
 // Layer 2 of a box behind a plane has the analytic depth and honours the minimum separation, in both the
 // single-pass predicted mode (still camera) and the two-pass depth-peeling oracle, with either layer routing (the
 // vertex stage's gl_Layer, or the geometry shader), with and without layer 2's depth prepass.

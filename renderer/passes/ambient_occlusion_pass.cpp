@@ -26,7 +26,7 @@ void AmbientOcclusionPass::execute(FrameContext& ctx) {
     prog.spiralTurns.set(float(spiralTurns(r.numSamples)));
     prog.radius.set(r.radius);
     prog.maxMip.set(maxMip);
-    prog.minMip.set(std::min(r.minMip, maxMip));
+    prog.minMip.set(std::min(ctx.config.tapLevel, maxMip));  // the gather's finest tap level (0 without indirect light)
     prog.logMaxOffset.set(r.logMaxOffset);
     prog.useLayer2.set(ctx.config.layer2);
     prog.time.set(r.varyTaps ? ctx.time : 0.0f);

@@ -69,6 +69,14 @@ struct PipelineConfig {
 // The mip levels the gather reads (0..kMaxTapLevel); and the level-0 pixel of each 2^L block that level L samples:
 // the pixel right and below the block's centre (itself at level 0).
 constexpr int kMaxTapLevel = 5;
+// The finest level a tap reads in an image `height` rows tall (radiosity.min_mip, radiosity.min_mip_height): minMip,
+// one level coarser per doubling of the height above minMipHeight (0: minMip at every height), at most kMaxTapLevel.
+inline int finestTapLevel(int minMip, int minMipHeight, int height) {
+    int level = minMip;
+    if (minMipHeight > 0)
+        for (long long rows = 2LL * minMipHeight; rows <= height && level < kMaxTapLevel; rows *= 2) ++level;
+    return level;
+}
 inline glm::ivec2 tapSampleOffset(int level) { return glm::ivec2((1 << level) >> 1); }
 
 // ---- The pass table ---------------------------------------------------------------------------------------

@@ -50,7 +50,7 @@ void RadiosityGatherPass::execute(FrameContext& ctx) {
     prog.spiralTurns.set(float(spiralTurns(s.numSamples)));
     prog.radius.set(s.radius);
     prog.maxMip.set(maxMip);
-    prog.minMip.set(std::min(s.minMip, maxMip));
+    prog.minMip.set(std::min(ctx.config.tapLevel, maxMip));  // radiosity.min_mip at this image's height
     prog.logMaxOffset.set(s.logMaxOffset);
     prog.tapNormalTest.set(s.tapNormalTest);
     prog.useLayer2.set(ctx.config.layer2);
