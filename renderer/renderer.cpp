@@ -217,9 +217,7 @@ PipelineConfig Renderer::makeConfig(const Settings& s) const {
         c.tapLevel = std::clamp(finestTapLevel(s.minMip, s.minMipHeight, height_), 0, std::min(kMaxTapLevel, coarsest));
     }
     if (c.indirect) {
-        const bool half = s.radiosityResolution == RadiosityResolution::Half ||
-                          (s.radiosityResolution == RadiosityResolution::Auto && software);
-        c.radiosityDownsample = half ? 2 : 1;
+        c.radiosityDownsample = radiosityDownsample(s.radiosityResolution, software, height_);
         // The interleaved gather reuses the temporal filter's history: without the filter there is none.
         const RadiosityInterleave il = s.interleave == RadiosityInterleave::Auto
                                            ? (software ? RadiosityInterleave::Four : RadiosityInterleave::Off)
@@ -361,8 +359,9 @@ void Renderer::prepare(const Settings& user) { prepareResolved(resolveLengths(us
 
 void Renderer::prepareResolved(const Settings& s) {
     if (width_ <= 0 || height_ <= 0) return;
-    // Even, so that the half-resolution radiosity grid's centre is the image's, texel for texel.
-    const int guard = 2 * int(std::lround(double(s.guardBand) * double(height_) * 0.5));
+    // A multiple of the radiosity grid's divisor (and even), so that the grid's centre is the image's, texel for texel.
+    const int unit = std::max(2, radiosityDownsample(s.radiosityResolution, softwareGl_, height_));
+    const int guard = unit * int(std::lround(double(s.guardBand) * double(height_) / double(unit)));
     if (guard != guard_) historyValid_ = false;  // every screen-sized buffer changes size and meaning
     guard_ = guard;
     // The probe volume exists only where it can help: indirect light on, or an environment that lights (its sky

@@ -46,15 +46,15 @@ double rowsMean(const FloatImage& img, int y0, int y1) {
 
 // The image with a guard band is, pixel for pixel, the centre of the same frame rendered larger without one: the view
 // is widened by whole pixels of the same size. Checked on the full pipeline (G-buffer, gather, blur, temporal filter,
-// composite) at full and half radiosity resolution, and for every read-back of the image (readLayer, readDisplay,
+// composite) at full, half and quarter radiosity resolution, and for every read-back of the image (readLayer, readDisplay,
 // objectAt).
 TEST_F(GLTest, GuardBandImageIsTheCentreOfAWiderFrame) {
     auto scene = test::cornellScene();
     const int W = 64, H = 48;
-    for (const char* resolution : {"full", "half"}) {
+    for (const char* resolution : {"full", "half", "quarter"}) {
         Settings s;
         applySetting(s, "radiosity.resolution", resolution);
-        s.guardBand = 0.25f;  // 12 pixels on each side
+        s.guardBand = 0.25f;  // 12 pixels on each side (a multiple of 4: the quarter grid's texels stay the image's)
         Renderer banded(test::sceneEditing());
         banded.setScene(scene);
         banded.resize(W, H);
@@ -90,9 +90,9 @@ TEST_F(GLTest, GuardBandImageIsTheCentreOfAWiderFrame) {
                     resolution, maxDiff, maxValue);
         EXPECT_LT(maxDiff, 1e-3 * maxValue) << resolution;  // the same computation but for float rounding
 
-        // Half-resolution buffers crop by half the band.
+        // Reduced-resolution buffers crop by the band over the grid's divisor.
         const FloatImage ra = banded.readLayer("Output Radiance"), rb = wide.readLayer("Output Radiance");
-        const int d = std::string(resolution) == "half" ? 2 : 1;
+        const int d = std::string(resolution) == "quarter" ? 4 : std::string(resolution) == "half" ? 2 : 1;
         EXPECT_EQ(ra.width, (W + d - 1) / d);
         double rd = 0.0;
         for (int y = 0; y < ra.height; ++y)

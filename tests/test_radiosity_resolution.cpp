@@ -1,5 +1,6 @@
-// Half-resolution radiosity (radiosity.resolution): the gather, blur and temporal filter on a grid of a quarter of
-// the pixels, upsampled by depth and normal in the composite, checked against the same frames at full resolution.
+// Reduced-resolution radiosity (radiosity.resolution): the gather, blur and temporal filter on a grid of a quarter
+// (half) or a sixteenth (quarter) of the pixels, upsampled by depth and normal in the composite, checked against the
+// same frames at full resolution.
 #include "bench/metrics.h"
 #include "renderer/passes/bilateral_blur_pass.h"
 #include "renderer/core/image_compare.h"
@@ -70,11 +71,57 @@ TEST_F(GLTest, HalfResolutionRadiosityFollowsFullResolution) {
     EXPECT_LT(f.blockRelL1, 0.10);
 }
 
+// The quarter grid is chosen (auto) from 360 image rows, where it has the 90 rows that half has at 320x180, the
+// hard suite's size; so it is checked at 480x360 against full resolution with the same bound as half above.
+TEST_F(GLTest, QuarterResolutionRadiosityFollowsFullResolution) {
+    auto scene = cornellScene();
+    const RadiosityRun quarter = runAt(scene, RadiosityResolution::Quarter, 480, 360, 40);
+    const RadiosityRun full = runAt(scene, RadiosityResolution::Full, 480, 360, 40);
+    EXPECT_EQ(quarter.gridWidth, 120);
+    EXPECT_EQ(quarter.gridHeight, 90);
+    dumpIfRequested("radiosity_quarter_indirect", quarter.indirect);
+    dumpIfRequested("radiosity_full360_indirect", full.indirect);
+    const ImageFigures f = compareImages(quarter.indirect, full.indirect);
+    std::printf("quarter vs full resolution radiosity at 480x360, indirect part: %s\n", f.line().c_str());
+    ASSERT_TRUE(f.valid);
+    EXPECT_NEAR(f.ratioOfMeans, 1.0, 0.03);
+    EXPECT_LT(f.blockRelL1, 0.10);
+}
+
+// auto: full on a GPU; on software GL half below 360 image rows and quarter from 360; the image's rows, not the
+// guard band's frame.
+TEST(RadiosityDownsample, AutoIsQuarterFrom360ImageRowsOnSoftwareGl) {
+    EXPECT_EQ(radiosityDownsample(RadiosityResolution::Auto, true, 180), 2);
+    EXPECT_EQ(radiosityDownsample(RadiosityResolution::Auto, true, 359), 2);
+    EXPECT_EQ(radiosityDownsample(RadiosityResolution::Auto, true, 360), 4);
+    EXPECT_EQ(radiosityDownsample(RadiosityResolution::Auto, true, 1080), 4);
+    EXPECT_EQ(radiosityDownsample(RadiosityResolution::Auto, false, 1080), 1);
+    EXPECT_EQ(radiosityDownsample(RadiosityResolution::Full, true, 720), 1);
+    EXPECT_EQ(radiosityDownsample(RadiosityResolution::Half, true, 720), 2);
+    EXPECT_EQ(radiosityDownsample(RadiosityResolution::Quarter, false, 100), 4);
+}
+
+TEST_F(GLTest, AutoRadiosityResolutionFollowsTheImageHeight) {
+    auto scene = cornellScene();
+    auto gridOf = [&](int w, int h, float guardBand) {
+        Settings s;
+        s.guardBand = guardBand;
+        auto r = rendererFor(scene, w, h, "front");
+        r->render(s);
+        const FloatImage out = r->readLayer("Output Radiance");  // the image's part of the grid
+        return std::make_pair(out.width, out.height);
+    };
+    EXPECT_EQ(gridOf(96, 359, 0.0f), std::make_pair(48, 180));
+    EXPECT_EQ(gridOf(96, 360, 0.0f), std::make_pair(24, 90));
+    // 340 rows and a guard band of 0.1 (34 rows each side) make a frame of 408 rows: the image's 340 choose half.
+    EXPECT_EQ(gridOf(96, 340, 0.1f), std::make_pair(48, 170));
+}
+
 // blur.radius counts full-resolution pixels: a grid of 1/d takes the fewest of its own taps that reach as far on
 // screen (taps * d >= radius, (taps - 1) * d < radius), so half resolution's blur keeps full resolution's footprint
 // instead of doubling it (5 -> 3 taps; session 23 of docs/BENCHMARKS.md: hidden_emitter 8.97 -> 8.61 %).
 TEST(BlurTaps, ReachTheRadiusInFullResolutionPixels) {
-    for (int d = 1; d <= 2; ++d)
+    for (int d : {1, 2, 4})
         for (int radius = 1; radius <= 6; ++radius) {
             const int taps = blurTaps(radius, d);
             EXPECT_GE(taps * d, radius) << radius << " at 1/" << d;
@@ -84,6 +131,7 @@ TEST(BlurTaps, ReachTheRadiusInFullResolutionPixels) {
     EXPECT_EQ(blurTaps(5, 1), 5);
     EXPECT_EQ(blurTaps(5, 2), 3);
     EXPECT_EQ(blurTaps(1, 2), 1);
+    EXPECT_EQ(blurTaps(5, 4), 2);
 }
 
 }  // namespace deepgi::test

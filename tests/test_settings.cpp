@@ -50,6 +50,9 @@ TEST(Settings, JsonRoundTripAndPresets) {
     EXPECT_EQ(q.visibilitySteps, 8);
     EXPECT_EQ(q.radiosityResolution, RadiosityResolution::Auto);  // chosen on the hard suite (BENCHMARKS sessions 11, 14)
     EXPECT_EQ(q.interleave, RadiosityInterleave::Off);
+    Settings perf;
+    applyPreset(perf, "performance");
+    EXPECT_EQ(perf.radiosityResolution, RadiosityResolution::Quarter);  // the fastest at every height (BENCHMARKS session 26)
     EXPECT_THROW(applySettingsJson(q, nlohmann::json{{"blur.enabled", 3}}, "x.json"), std::runtime_error);
 }
 

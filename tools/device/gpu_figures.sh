@@ -3,7 +3,7 @@
 # no package registry). Run from the repository root with, in the ignored folder .dev (tools/device/prepare.sh makes it):
 #   deepgi.tar.xz              tools/device/pack.py .dev/deepgi.tar.xz (the binary and the libraries it loads)
 #   scenes.tar.xz              CrytekSponza (its 3-channel textures as JPEG q92, to fit the transfer) and CornellBox
-#   atrium_640_llvmpipe.exr    deepgi render --size 640x360 --frames 24 --set radiosity.resolution=half
+#   atrium_640_llvmpipe.exr    deepgi render --size 640x360 --frames 24 --set radiosity.resolution=quarter
 #                              --set radiosity.interleave=4 (the software-GL defaults), made here with llvmpipe
 #   hard_cache/                the hard suite's reference cache
 #   fonts/DejaVuSans.ttf       the bench's labels (OpenImageIO finds it through OPENIMAGEIO_FONTS)
@@ -56,9 +56,9 @@ print(f"{sys.argv[1]}\tframe_wall_ms={t['frame_median_ms']:.2f}\tgpu_passes_ms={
 EOF
 }
 
-echo "== 1. the same frame as llvmpipe (its defaults: half resolution, interleave 4), 640x360, 24 frames"
+echo "== 1. the same frame as llvmpipe (its defaults at 360 rows: quarter resolution, interleave 4), 640x360, 24 frames"
 if step 1 && left compare; then
-    $G render --context egl --size 640x360 --frames 24 --set radiosity.resolution=half --set radiosity.interleave=4 \
+    $G render --context egl --size 640x360 --frames 24 --set radiosity.resolution=quarter --set radiosity.interleave=4 \
         --out /tmp/r/same_as_cpu > /tmp/r_same.txt 2>&1 && $G compare /tmp/r/same_as_cpu/final.exr .dev/atrium_640_llvmpipe.exr
 fi
 

@@ -31,7 +31,7 @@ tar cJf .dev/scenes.tar.xz -C "$tmp" .
 rm -rf "$tmp"
 
 # The frame the GPU must reproduce: the software-GL defaults, made here on llvmpipe.
-build/app/deepgi render --size 640x360 --frames 24 --set radiosity.resolution=half --set radiosity.interleave=4 \
+build/app/deepgi render --size 640x360 --frames 24 --set radiosity.resolution=quarter --set radiosity.interleave=4 \
     --out /tmp/deepgi_llvmpipe_640 > /dev/null
 cp /tmp/deepgi_llvmpipe_640/final.exr .dev/atrium_640_llvmpipe.exr
 
