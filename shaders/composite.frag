@@ -31,10 +31,13 @@ layout(location = 2) out vec4 oDirect;    // Direct Radiance: layer 1's outgoing
 // Indirect irradiance at screen pixel pix (surface P, normal n) from the radiosity grid: its own texel at full
 // resolution; on a coarser grid the bilinear neighbours, each weighted by how well its surface matches this one
 // (distance from this pixel's tangent plane, normal agreement: a joint bilateral upsample), or the best-matching
-// neighbour alone where none matches (a silhouette against a different surface).
+// neighbour alone where none matches (a silhouette against a different surface). Which of the two is a define, not
+// a test of uRadiosityGrid.x: llvmpipe runs both sides of an if (the unused fetch: composite 0.95 x in passtime).
 vec3 indirectAt(ivec2 pix, vec3 P, vec3 n) {
+#ifdef DEEPGI_RADIOSITY_FULL
+    return texelFetch(uIndirect, pix, 0).rgb;
+#else
     int d = int(uRadiosityGrid.x);
-    if (d == 1) return texelFetch(uIndirect, pix, 0).rgb;
     ivec2 grid = ivec2(uRadiosityGrid.yz);
     vec2 f = (vec2(pix) + 0.5) / float(d) - 0.5;
     ivec2 b = ivec2(floor(f));
@@ -61,6 +64,7 @@ vec3 indirectAt(ivec2 pix, vec3 P, vec3 n) {
         if (err < bestErr) { bestErr = err; best = E; }
     }
     return total > 1e-3 ? sum / total : best;
+#endif
 }
 
 // Layer 1's outgoing direct radiance at pixel pix (surface P, unit n): albedo/pi x the shadowed irradiance of every

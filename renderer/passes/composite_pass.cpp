@@ -52,6 +52,7 @@ void CompositePass::execute(FrameContext& ctx) {
     if (ctx.config.sky) bindProbeUniforms(ctx);
     // Direct light only: a variant without the upsample (llvmpipe ran it under the uniform test, 2/3 of the pass).
     if (!ctx.config.indirect) defines.push_back("DEEPGI_NO_INDIRECT");
+    else if (ctx.config.radiosityDownsample == 1) defines.push_back("DEEPGI_RADIOSITY_FULL");  // no upsample
     if (ctx.config.compositeSkyDraw) defines.push_back("DEEPGI_SURFACE_PIXELS");
     Program& prog = program_.get(ctx.shaders, {"fullscreen.vert", "", "composite.frag", "", defines});
     prog.environment.set(environmentUniform(ctx));
