@@ -15,6 +15,8 @@ CommandRegistrar registrar("render", "Render a glTF scene headless (OSMesa) to a
     sub.add_option("scene", job->scenePath, "glTF/glb or OBJ file (default: the atrium in assets/)");
     sub.add_option("--size", *size, "Image size WxH")->capture_default_str();
     sub.add_option("--frames", job->frames, "Frames to render (temporal passes converge over them)")->capture_default_str()->check(CLI::Range(1, 100000));
+    sub.add_option("--warmup", job->warmupFrames, "Frames rendered before the --frames that are timed (e.g. until the probes "
+                                                  "settle: timings.json says whether they had)")->capture_default_str()->check(CLI::Range(0, 1000000));
     sub.add_option("--camera", job->camera, "glTF camera name (default: the scene's first, else a framing camera)");
     sub.add_option("--camera-file", job->cameraFile, "Camera from a JSON file (a viewer capture's camera.json); wins over --camera");
     sub.add_option("--buffers", job->buffers, "Buffers to dump as EXR: all, or comma-separated layer names (see `deepgi buffers`)");
@@ -34,12 +36,15 @@ CommandRegistrar registrar("render", "Render a glTF scene headless (OSMesa) to a
         job->settings = settings->build();
         if (job->scenePath.empty()) job->scenePath = defaultScenePath();
         RenderJobResult r = runRenderJob(*job);
-        std::printf("deepgi: rendered %s (%dx%d, %d frames, %zu triangles) on %s\n", job->scenePath.c_str(), job->width,
-                    job->height, job->frames, r.triangles, r.glRenderer.c_str());
+        char warmup[48] = "";
+        if (job->warmupFrames > 0) std::snprintf(warmup, sizeof warmup, " after %d warm-up frames", job->warmupFrames);
+        std::printf("deepgi: rendered %s (%dx%d, %d frames%s, %zu triangles) on %s\n", job->scenePath.c_str(), job->width,
+                    job->height, job->frames, warmup, r.triangles, r.glRenderer.c_str());
         char gpu[64] = "";
         if (r.gpuTimed) std::snprintf(gpu, sizeof gpu, " wall (passes %.2f ms on the GPU)", r.medianGpuPassesMs);
-        std::printf("deepgi: median frame %.1f ms%s; wrote %s/final.png, final.exr, timings.json, settings.json%s\n",
-                    r.medianFrameMs, gpu, job->outDir.c_str(), r.buffersWritten ? " and buffers" : "");
+        const char* probes = !r.hasProbes ? "" : r.probesSettled ? " (probes settled)" : " (probes still updating)";
+        std::printf("deepgi: median frame %.1f ms%s%s; wrote %s/final.png, final.exr, timings.json, settings.json%s\n",
+                    r.medianFrameMs, gpu, probes, job->outDir.c_str(), r.buffersWritten ? " and buffers" : "");
         for (const auto& w : r.warnings) std::fprintf(stderr, "deepgi: warning: %s\n", w.c_str());
         return 0;
     };

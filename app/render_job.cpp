@@ -7,6 +7,7 @@
 #include "renderer/core/util.h"
 #include "renderer/gl/gl.h"
 #include "renderer/gl/offscreen_context.h"
+#include "renderer/probes/probe_volume.h"
 #include "renderer/renderer.h"
 #include "renderer/scene/environment_map.h"
 #include "renderer/scene/scene_loader.h"
@@ -62,7 +63,10 @@ RenderJobResult runRenderJob(const RenderJob& job) {
         if (job.cameraFile.empty() && !scene->cameras.empty()) renderer.setCamera(selectCamera(*scene, job.camera));
     }
     std::filesystem::create_directories(job.outDir);
-    for (int f = 0; f < job.frames; ++f) {
+    // Warm-up frames are ordinary frames (the same image as rendering them timed) whose times are not kept: the
+    // figures of a converged or settled frame, e.g. after the probes' updates have stopped.
+    const int totalFrames = job.warmupFrames + job.frames;
+    for (int f = 0; f < totalFrames; ++f) {
         if (animate) {
             applyAnimation(*scene, float(job.time + double(f) / job.animateFps));
             renderer.sceneChanged(SceneChange::Transforms);
@@ -77,6 +81,7 @@ RenderJobResult runRenderJob(const RenderJob& job) {
             std::snprintf(name, sizeof(name), "/frame_%05d.png", f);
             writePng8(job.outDir + name, job.width, job.height, 4, renderer.readDisplay());
         }
+        if (f < job.warmupFrames) continue;
         double total = 0.0;
         for (const auto& t : renderer.timings()) {
             if (!perPass.count(t.name)) passOrder.push_back(t.name);
@@ -90,6 +95,10 @@ RenderJobResult runRenderJob(const RenderJob& job) {
         }
     }
     result.medianFrameMs = median(frameMs);
+    if (const ProbeVolume* probes = renderer.probeVolume()) {
+        result.hasProbes = true;
+        result.probesSettled = probes->settled(job.settings);
+    }
     if (!gpuPassesMs.empty()) result.medianGpuPassesMs = median(gpuPassesMs);
 
     const std::string out = job.outDir + "/";
@@ -118,6 +127,9 @@ RenderJobResult runRenderJob(const RenderJob& job) {
     timings["method"] = result.gpuTimed ? "passes: GL_TIME_ELAPSED queries; frame: wall clock from render() to glFinish"
                                         : "wall clock around glFinish per pass (llvmpipe timer queries miss vertex work)";
     timings["frames"] = job.frames;
+    timings["warmup_frames"] = job.warmupFrames;
+    timings["frames_ms"] = frameMs;  // each timed frame, in order (the medians hide a transient such as the probes')
+    if (result.hasProbes) timings["probes_settled"] = result.probesSettled;
     timings["gl_renderer"] = result.glRenderer;
     timings["size"] = {job.width, job.height};
     nlohmann::json passes = nlohmann::json::array();

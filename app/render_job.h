@@ -13,6 +13,7 @@ struct RenderJob {
     std::string cameraFile;  // --camera-file: a capture's camera.json (wins over camera)
     int width = 640, height = 360;
     int frames = 16;
+    int warmupFrames = 0;  // --warmup: frames rendered before the timed ones (they converge, nothing is timed)
     std::string buffers;  // "", "all" or comma-separated layer names
     std::string outDir = "out/render";
     std::string shaderDir;  // "" = the source tree's shaders/
@@ -29,6 +30,8 @@ struct RenderJobResult {
     double medianFrameMs = 0.0;  // software GL: the passes' sum (glFinish around each); a GPU: wall clock per frame
     double medianGpuPassesMs = 0.0;  // a GPU: the passes' GL_TIME_ELAPSED sum (0 on software GL)
     bool gpuTimed = false;
+    bool probesSettled = false;  // after the last frame: the probes' updates have stopped (probes.settle_updates)
+    bool hasProbes = false;
     size_t triangles = 0;
     bool buffersWritten = false;
     std::string glRenderer;

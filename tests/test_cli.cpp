@@ -2,6 +2,8 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include "renderer/core/image_io.h"
+
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -55,6 +57,40 @@ TEST(Cli, RenderWritesImagesBuffersTimingsAndSettings) {
     nlohmann::json s = nlohmann::json::parse(std::ifstream(out / "settings.json"));
     EXPECT_EQ(s["radiosity.samples"], 8);
     fs::remove_all(out);
+}
+
+// --warmup: frames rendered before the timed ones are ordinary frames (the image is that of rendering them all timed),
+// only the timed ones are in timings.json, and it says whether the probes had settled.
+TEST(Cli, RenderWarmupFramesAreRenderedButNotTimed) {
+    const std::string box = std::string(DEEPGI_ASSET_DIR) + "/cornell_box/cornell_box.gltf";
+    // Every probe updated each frame, settled after 2 updates.
+    const std::string common = " --size 32x24 --set probes.settle_updates=2 --set probes.rays_per_frame=1048576 --out ";
+    fs::path dir = tempDir("warmup");
+    RunResult early = run("render " + box + " --frames 1" + common + (dir / "early").string());
+    ASSERT_EQ(early.status, 0) << early.output;
+    EXPECT_NE(early.output.find("(probes still updating)"), std::string::npos) << early.output;
+    RunResult warm = run("render " + box + " --warmup 3 --frames 2" + common + (dir / "warm").string());
+    ASSERT_EQ(warm.status, 0) << warm.output;
+    EXPECT_NE(warm.output.find("after 3 warm-up frames"), std::string::npos) << warm.output;
+    EXPECT_NE(warm.output.find("(probes settled)"), std::string::npos) << warm.output;
+    RunResult all = run("render " + box + " --frames 5" + common + (dir / "all").string());
+    ASSERT_EQ(all.status, 0) << all.output;
+
+    nlohmann::json early_t = nlohmann::json::parse(std::ifstream(dir / "early" / "timings.json"));
+    nlohmann::json warm_t = nlohmann::json::parse(std::ifstream(dir / "warm" / "timings.json"));
+    EXPECT_EQ(early_t["probes_settled"], false);
+    EXPECT_EQ(warm_t["probes_settled"], true);
+    EXPECT_EQ(warm_t["frames"], 2);
+    EXPECT_EQ(warm_t["warmup_frames"], 3);
+    ASSERT_EQ(warm_t["frames_ms"].size(), 2u);
+    for (const auto& ms : warm_t["frames_ms"]) EXPECT_GT(ms.get<double>(), 0.0);
+
+    auto pixels = [&](const char* run) { return deepgi::readImage((dir / run / "final.exr").string()).pixels; };
+    const std::vector<float> warmPixels = pixels("warm");
+    ASSERT_FALSE(warmPixels.empty());
+    EXPECT_TRUE(warmPixels == pixels("all")) << "3 warm-up + 2 timed frames differ from 5 frames";
+    EXPECT_FALSE(warmPixels == pixels("early")) << "the frame count changes nothing: the check is blind";
+    fs::remove_all(dir);
 }
 
 TEST(Cli, BuffersReportsSeedLayoutTotals) {
