@@ -46,15 +46,16 @@ double rowsMean(const FloatImage& img, int y0, int y1) {
 
 // The image with a guard band is, pixel for pixel, the centre of the same frame rendered larger without one: the view
 // is widened by whole pixels of the same size. Checked on the full pipeline (G-buffer, gather, blur, temporal filter,
-// composite) at full, half and quarter radiosity resolution, and for every read-back of the image (readLayer, readDisplay,
+// composite) at full, half, quarter and eighth radiosity resolution, and for every read-back of the image (readLayer, readDisplay,
 // objectAt).
 TEST_F(GLTest, GuardBandImageIsTheCentreOfAWiderFrame) {
     auto scene = test::cornellScene();
     const int W = 64, H = 48;
-    for (const char* resolution : {"full", "half", "quarter"}) {
+    for (const char* resolution : {"full", "half", "quarter", "eighth"}) {
         Settings s;
         applySetting(s, "radiosity.resolution", resolution);
         s.guardBand = 0.25f;  // 12 pixels on each side (a multiple of 4: the quarter grid's texels stay the image's)
+        const bool eighth = std::string(resolution) == "eighth";
         Renderer banded(test::sceneEditing());
         banded.setScene(scene);
         banded.resize(W, H);
@@ -62,7 +63,7 @@ TEST_F(GLTest, GuardBandImageIsTheCentreOfAWiderFrame) {
         banded.setCamera(cam);
         for (int f = 0; f < 4; ++f) banded.render(s);
         const int g = banded.guardPixels();
-        ASSERT_EQ(g, 12);
+        ASSERT_EQ(g, eighth ? 16 : 12);  // the eighth grid rounds 12 to a multiple of 8
         EXPECT_EQ(banded.textures().entry("Depth").width, W + 2 * g);
         EXPECT_EQ(banded.frameCamera().yfov > cam.yfov, true);
 
@@ -92,7 +93,7 @@ TEST_F(GLTest, GuardBandImageIsTheCentreOfAWiderFrame) {
 
         // Reduced-resolution buffers crop by the band over the grid's divisor.
         const FloatImage ra = banded.readLayer("Output Radiance"), rb = wide.readLayer("Output Radiance");
-        const int d = std::string(resolution) == "quarter" ? 4 : std::string(resolution) == "half" ? 2 : 1;
+        const int d = eighth ? 8 : std::string(resolution) == "quarter" ? 4 : std::string(resolution) == "half" ? 2 : 1;
         EXPECT_EQ(ra.width, (W + d - 1) / d);
         double rd = 0.0;
         for (int y = 0; y < ra.height; ++y)

@@ -1,6 +1,6 @@
 // Reduced-resolution radiosity (radiosity.resolution): the gather, blur and temporal filter on a grid of a quarter
-// (half) or a sixteenth (quarter) of the pixels, upsampled by depth and normal in the composite, checked against the
-// same frames at full resolution.
+// (half), a sixteenth (quarter) or a 64th (eighth) of the pixels, upsampled by depth and normal in the composite,
+// checked against the same frames at full resolution.
 #include "bench/metrics.h"
 #include "renderer/passes/bilateral_blur_pass.h"
 #include "renderer/core/image_compare.h"
@@ -71,34 +71,48 @@ TEST_F(GLTest, HalfResolutionRadiosityFollowsFullResolution) {
     EXPECT_LT(f.blockRelL1, 0.10);
 }
 
-// The quarter grid is chosen (auto) from 360 image rows, where it has the 90 rows that half has at 320x180, the
-// hard suite's size; so it is checked at 480x360 against full resolution with the same bound as half above.
-TEST_F(GLTest, QuarterResolutionRadiosityFollowsFullResolution) {
+// A grid of 1/d at w x h (120x90 texels, the rows the hard suite measures) against full resolution, with the bounds of
+// half above: ratio of means within 3 %, 4x4-block relative L1 under 10 %.
+static void expect90RowGridFollowsFullResolution(RadiosityResolution res, const char* name, int w, int h) {
     auto scene = cornellScene();
-    const RadiosityRun quarter = runAt(scene, RadiosityResolution::Quarter, 480, 360, 40);
-    const RadiosityRun full = runAt(scene, RadiosityResolution::Full, 480, 360, 40);
-    EXPECT_EQ(quarter.gridWidth, 120);
-    EXPECT_EQ(quarter.gridHeight, 90);
-    dumpIfRequested("radiosity_quarter_indirect", quarter.indirect);
-    dumpIfRequested("radiosity_full360_indirect", full.indirect);
-    const ImageFigures f = compareImages(quarter.indirect, full.indirect);
-    std::printf("quarter vs full resolution radiosity at 480x360, indirect part: %s\n", f.line().c_str());
+    const RadiosityRun coarse = runAt(scene, res, w, h, 40);
+    const RadiosityRun full = runAt(scene, RadiosityResolution::Full, w, h, 40);
+    EXPECT_EQ(coarse.gridWidth, 120);
+    EXPECT_EQ(coarse.gridHeight, 90);
+    dumpIfRequested(std::string("radiosity_") + name + "_indirect", coarse.indirect);
+    dumpIfRequested("radiosity_full" + std::to_string(h) + "_indirect", full.indirect);
+    const ImageFigures f = compareImages(coarse.indirect, full.indirect);
+    std::printf("%s vs full resolution radiosity at %dx%d, indirect part: %s\n", name, w, h, f.line().c_str());
     ASSERT_TRUE(f.valid);
     EXPECT_NEAR(f.ratioOfMeans, 1.0, 0.03);
     EXPECT_LT(f.blockRelL1, 0.10);
 }
 
-// auto: full on a GPU; on software GL half below 360 image rows and quarter from 360; the image's rows, not the
-// guard band's frame.
+// The quarter grid is chosen (auto) from 360 image rows, where it has the 90 rows that half has at 320x180, the
+// hard suite's size; so it is checked at 480x360.
+TEST_F(GLTest, QuarterResolutionRadiosityFollowsFullResolution) {
+    expect90RowGridFollowsFullResolution(RadiosityResolution::Quarter, "quarter", 480, 360);
+}
+
+// The eighth grid (only when asked for) has those 90 rows at 720 image rows; checked at 960x720.
+TEST_F(GLTest, EighthResolutionRadiosityFollowsFullResolution) {
+    expect90RowGridFollowsFullResolution(RadiosityResolution::Eighth, "eighth", 960, 720);
+}
+
+// auto: full on a GPU; on software GL half below 360 image rows and quarter from 360, never eighth (its one-bounce
+// error at 720 rows, BENCHMARKS session 30); the image's rows, not the guard band's frame.
 TEST(RadiosityDownsample, AutoIsQuarterFrom360ImageRowsOnSoftwareGl) {
     EXPECT_EQ(radiosityDownsample(RadiosityResolution::Auto, true, 180), 2);
     EXPECT_EQ(radiosityDownsample(RadiosityResolution::Auto, true, 359), 2);
     EXPECT_EQ(radiosityDownsample(RadiosityResolution::Auto, true, 360), 4);
-    EXPECT_EQ(radiosityDownsample(RadiosityResolution::Auto, true, 1080), 4);
+    EXPECT_EQ(radiosityDownsample(RadiosityResolution::Auto, true, 719), 4);
+    EXPECT_EQ(radiosityDownsample(RadiosityResolution::Auto, true, 720), 4);
+    EXPECT_EQ(radiosityDownsample(RadiosityResolution::Auto, true, 2160), 4);
     EXPECT_EQ(radiosityDownsample(RadiosityResolution::Auto, false, 1080), 1);
     EXPECT_EQ(radiosityDownsample(RadiosityResolution::Full, true, 720), 1);
     EXPECT_EQ(radiosityDownsample(RadiosityResolution::Half, true, 720), 2);
     EXPECT_EQ(radiosityDownsample(RadiosityResolution::Quarter, false, 100), 4);
+    EXPECT_EQ(radiosityDownsample(RadiosityResolution::Eighth, false, 100), 8);
 }
 
 TEST_F(GLTest, AutoRadiosityResolutionFollowsTheImageHeight) {
@@ -121,7 +135,7 @@ TEST_F(GLTest, AutoRadiosityResolutionFollowsTheImageHeight) {
 // screen (taps * d >= radius, (taps - 1) * d < radius), so half resolution's blur keeps full resolution's footprint
 // instead of doubling it (5 -> 3 taps; session 23 of docs/BENCHMARKS.md: hidden_emitter 8.97 -> 8.61 %).
 TEST(BlurTaps, ReachTheRadiusInFullResolutionPixels) {
-    for (int d : {1, 2, 4})
+    for (int d : {1, 2, 4, 8})
         for (int radius = 1; radius <= 6; ++radius) {
             const int taps = blurTaps(radius, d);
             EXPECT_GE(taps * d, radius) << radius << " at 1/" << d;
@@ -132,6 +146,7 @@ TEST(BlurTaps, ReachTheRadiusInFullResolutionPixels) {
     EXPECT_EQ(blurTaps(5, 2), 3);
     EXPECT_EQ(blurTaps(1, 2), 1);
     EXPECT_EQ(blurTaps(5, 4), 2);
+    EXPECT_EQ(blurTaps(5, 8), 1);
 }
 
 }  // namespace deepgi::test

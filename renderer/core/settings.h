@@ -11,7 +11,7 @@ enum class GBufferGeneration { Predicted, DepthPeel };
 enum class LayerRouting { Auto, Vertex, Geometry };
 enum class Layer2Prepass { Auto, On, Off };
 enum class FilterOrder { BlurFirst, TemporalFirst };
-enum class RadiosityResolution { Auto, Full, Half, Quarter };
+enum class RadiosityResolution { Auto, Full, Half, Quarter, Eighth };
 enum class RadiosityInterleave { Auto, Off, Two, Four };
 enum class CompositeMode { Physical, Seed };
 enum class Tonemap { Clamp, Aces };

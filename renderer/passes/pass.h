@@ -77,15 +77,17 @@ inline int finestTapLevel(int minMip, int minMipHeight, int height) {
         for (long long rows = 2LL * minMipHeight; rows <= height && level < kMaxTapLevel; rows *= 2) ++level;
     return level;
 }
-// The radiosity grid's divisor d (radiosity.resolution): full 1, half 2, quarter 4; auto is full on a GPU and, on
-// software GL, half below 360 image rows and quarter from 360, so the grid keeps at least 90 rows, what the hard
-// suite measures at 320x180 (half); the image's height, not the guard band's frame.
+// The radiosity grid's divisor d (radiosity.resolution): full 1, half 2, quarter 4, eighth 8; auto is full on a GPU
+// and, on software GL, half below 360 image rows and quarter from 360, so the grid keeps at least 90 rows, what the
+// hard suite measures at 320x180 (half); the image's height, not the guard band's frame. Auto never takes eighth: at
+// 1280x720 (90 grid rows) its one-bounce figures rose to 1.13 x full resolution's (BENCHMARKS session 30).
 constexpr int kQuarterRadiosityRows = 360;
 inline int radiosityDownsample(RadiosityResolution r, bool softwareGl, int height) {
     switch (r) {
     case RadiosityResolution::Full: return 1;
     case RadiosityResolution::Half: return 2;
     case RadiosityResolution::Quarter: return 4;
+    case RadiosityResolution::Eighth: return 8;
     case RadiosityResolution::Auto: break;
     }
     return !softwareGl ? 1 : height >= kQuarterRadiosityRows ? 4 : 2;
