@@ -51,11 +51,18 @@ double rowsMean(const FloatImage& img, int y0, int y1) {
 TEST_F(GLTest, GuardBandImageIsTheCentreOfAWiderFrame) {
     auto scene = test::cornellScene();
     const int W = 64, H = 48;
-    for (const char* resolution : {"full", "half", "quarter", "eighth"}) {
+    // Each grid, its divisor d and the band in pixels: 0.25 x 48 = 12 on each side, a multiple of 4, so the
+    // quarter grid's texels stay the image's; the eighth grid rounds it up to 16, a multiple of 8.
+    struct Grid {
+        const char* resolution;
+        int d, band;
+    };
+    for (const Grid grid : {Grid{"full", 1, 12}, Grid{"half", 2, 12}, Grid{"quarter", 4, 12}, Grid{"eighth", 8, 16}}) {
+        const char* resolution = grid.resolution;
+        const int d = grid.d;
         Settings s;
         applySetting(s, "radiosity.resolution", resolution);
-        s.guardBand = 0.25f;  // 12 pixels on each side (a multiple of 4: the quarter grid's texels stay the image's)
-        const bool eighth = std::string(resolution) == "eighth";
+        s.guardBand = 0.25f;
         Renderer banded(test::sceneEditing());
         banded.setScene(scene);
         banded.resize(W, H);
@@ -63,7 +70,7 @@ TEST_F(GLTest, GuardBandImageIsTheCentreOfAWiderFrame) {
         banded.setCamera(cam);
         for (int f = 0; f < 4; ++f) banded.render(s);
         const int g = banded.guardPixels();
-        ASSERT_EQ(g, eighth ? 16 : 12);  // the eighth grid rounds 12 to a multiple of 8
+        ASSERT_EQ(g, grid.band) << resolution;
         EXPECT_EQ(banded.textures().entry("Depth").width, W + 2 * g);
         EXPECT_EQ(banded.frameCamera().yfov > cam.yfov, true);
 
@@ -93,7 +100,6 @@ TEST_F(GLTest, GuardBandImageIsTheCentreOfAWiderFrame) {
 
         // Reduced-resolution buffers crop by the band over the grid's divisor.
         const FloatImage ra = banded.readLayer("Output Radiance"), rb = wide.readLayer("Output Radiance");
-        const int d = eighth ? 8 : std::string(resolution) == "quarter" ? 4 : std::string(resolution) == "half" ? 2 : 1;
         EXPECT_EQ(ra.width, (W + d - 1) / d);
         double rd = 0.0;
         for (int y = 0; y < ra.height; ++y)
