@@ -88,7 +88,8 @@ std::vector<BenchConfig> defaultConfigs() {
         {"default", "", {}, "two layers, predicted (one geometry pass; three with the layer-2 prepass); the defaults = balanced preset"},
         {"direct_only", "", {"radiosity.enabled=false"}, "direct light only"},
         {"layer1", "", {"gbuffer.layer2=false"}, "one layer (plain G-buffer)"},
-        {"two_layer_predicted", "", {"gbuffer.generation=predicted"}, "two layers, predicted"},
+        {"two_layer_predicted", "", {"gbuffer.generation=predicted", "gbuffer.layer2_prepass=off"},
+         "two layers, predicted in one geometry pass (the paper's single pass; the defaults split the layers on software GL)"},
         {"two_layer_peel", "", {"gbuffer.generation=depth_peel"}, "two layers, two-pass depth peeling (oracle)"},
     };
     for (int n : {6, 13, 19, 30, 50})
@@ -320,7 +321,9 @@ BenchResult runBench(const BenchOptions& o) {
     for (const ViewData& vd : views) {
         const std::string sc = fs::path(vd.view.scenePath).stem().string();
         const std::string cam = vd.label.substr(vd.label.find('/') + 1);
-        const BenchRow* pred = findRow(result.rows, sc, cam, "default");
+        // The paper's claim is about its single pass; the defaults' row stands in where that configuration was not run.
+        const BenchRow* pred = findRow(result.rows, sc, cam, "two_layer_predicted");
+        if (!pred) pred = findRow(result.rows, sc, cam, "default");
         const BenchRow* peel = findRow(result.rows, sc, cam, "two_layer_peel");
         if (pred && peel && pred->passMs.count("Deep G-buffer") && peel->passMs.count("Deep G-buffer")) {
             const double a = pred->passMs.at("Deep G-buffer"), b = peel->passMs.at("Deep G-buffer");

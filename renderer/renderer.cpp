@@ -202,11 +202,6 @@ PipelineConfig Renderer::makeConfig(const Settings& s) const {
     c.depthPeel = s.generation == GBufferGeneration::DepthPeel && c.layer2;
     c.layeredVertex = s.layerRouting != LayerRouting::Geometry && hasVertexLayer_;
     const bool software = softwareGl_;
-    // The prepass pays two more geometry passes to shade each pixel once: worth it while fragments cost more than
-    // vertices (on llvmpipe: the atrium, Sponza; not the heavy scene's 4.6 triangles per pixel at 640x360).
-    const bool fragmentBound = double(scene_->triangleCount()) < 2.0 * double(frameWidth()) * double(frameHeight());
-    c.layer2Prepass = c.layer2 && (s.layer2Prepass == Layer2Prepass::On ||
-                                   (s.layer2Prepass == Layer2Prepass::Auto && software && fragmentBound));
     c.ao = s.aoEnabled;
     c.compositeSkyDraw = software;
     // The gather's finest tap level: its radiance, depth and normal are evaluated or drawn there, not finer. It
@@ -216,6 +211,15 @@ PipelineConfig Renderer::makeConfig(const Settings& s) const {
         const int coarsest = int(std::log2(double(std::max({frameWidth(), frameHeight(), 1}))));
         c.tapLevel = std::clamp(finestTapLevel(s.minMip, s.minMipHeight, height_), 0, std::min(kMaxTapLevel, coarsest));
     }
+    // Software GL splits the layers where it costs less. Layer 2 alone at a tap level L > 0 is one draw of few
+    // fragments, and through the vertex route the split draws each triangle twice as the instanced single pass does:
+    // no more vertex work at any triangle count (heavy scene G-buffer 0.78 x, Sponza at 320x180 0.90 x). At level 0
+    // the prepass pays a third geometry pass, worth it only while fragments cost more than vertices; through the
+    // geometry shader, the single pass runs it once where the split runs it twice (heavy scene 1.18 x).
+    const bool fragmentBound = double(scene_->triangleCount()) < 2.0 * double(frameWidth()) * double(frameHeight());
+    const bool coarseLayer2Draw = c.layeredVertex && c.tapLevel > 0;
+    c.layer2Prepass = c.layer2 && (s.layer2Prepass == Layer2Prepass::On ||
+                                   (s.layer2Prepass == Layer2Prepass::Auto && software && (fragmentBound || coarseLayer2Draw)));
     if (c.indirect) {
         c.radiosityDownsample = radiosityDownsample(s.radiosityResolution, software, height_);
         // The interleaved gather reuses the temporal filter's history: without the filter there is none.

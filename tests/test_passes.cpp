@@ -164,6 +164,40 @@ TEST_F(GLTest, LayerRoutingsFillTheSameDeepGBuffer) {
     }
 }
 
+// gbuffer.layer2_prepass=auto on llvmpipe splits the layers wherever the split costs no more geometry work: layer 2
+// drawn alone at a tap level above 0 through the vertex route, at any triangle count; at level 0 (radiosity.min_mip=0,
+// the AO alone) or through the geometry shader only while the scene has fewer triangles than twice the pixels.
+TEST_F(GLTest, AutoLayer2PrepassSplitsTheLayersWhereItCostsNoMoreGeometryWork) {
+    auto scene = cornellScene();
+    struct Case {
+        const char* what;
+        int width, height;
+        LayerRouting routing;
+        int minMip;
+        bool indirect, split;
+    };
+    const int many = 4, manyRows = 3;  // fewer than half as many pixels as the box has triangles (30)
+    ASSERT_GT(scene->triangleCount(), size_t(2 * many * manyRows));
+    ASSERT_LT(scene->triangleCount(), size_t(2 * 160 * 120));
+    for (const Case& c : {Case{"vertex route, tap level 2", many, manyRows, LayerRouting::Auto, 2, true, true},
+                          Case{"geometry shader", many, manyRows, LayerRouting::Geometry, 2, true, false},
+                          Case{"tap level 0", many, manyRows, LayerRouting::Auto, 0, true, false},
+                          Case{"the AO alone (layer 2 at level 0)", many, manyRows, LayerRouting::Auto, 2, false, false},
+                          Case{"geometry shader, few triangles", 160, 120, LayerRouting::Geometry, 2, true, true}}) {
+        auto renderer = rendererFor(scene, c.width, c.height, "front");
+        Renderer& r = *renderer;
+        Settings s;
+        s.layerRouting = c.routing;
+        s.minMip = c.minMip;
+        s.indirect = c.indirect;
+        s.aoEnabled = !c.indirect;
+        for (int f = 0; f < 2; ++f) r.render(s);  // the second with history: a first frame always peels
+        ASSERT_TRUE(r.config().layer2) << c.what;
+        EXPECT_EQ(r.config().layer2Prepass, c.split) << c.what;
+        if (c.split) EXPECT_EQ(r.lastLayer2Level(), r.config().tapLevel) << c.what << ": layer 2 drawn alone at the tap level";
+    }
+}
+
 // The predicted layer 2 equals the depth-peeled oracle for a still camera.
 TEST_F(GLTest, PredictedLayer2MatchesPeelingForStillCamera) {
     auto scene = cornellScene();
