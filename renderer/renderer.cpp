@@ -323,7 +323,7 @@ void Renderer::setupLights(const Settings& s) {
     shadowKey_ = key;
 }
 
-void Renderer::uploadFrameUniforms(const Settings& s) {
+glm::mat4 Renderer::uploadFrameUniforms(const Settings& s) {
     const int fw = frameWidth(), fh = frameHeight();
     const float aspect = float(fw) / float(std::max(fh, 1));
     FrameUniformsStd140 u{};
@@ -355,6 +355,7 @@ void Renderer::uploadFrameUniforms(const Settings& s) {
     }
     glNamedBufferSubData(frameUbo_.id(), 0, sizeof(u), &u);
     glBindBufferBase(GL_UNIFORM_BUFFER, 0, frameUbo_.id());
+    return u.viewProj;
 }
 
 float Renderer::sceneSize() const { return 2.0f * scene_->bounds.radius(); }
@@ -571,8 +572,9 @@ bool Renderer::checkTrials(const char* passName, int limitMs, double startMs) {
 
 FrameContext Renderer::makeContext(const Settings& s) {
     setupLights(s);
-    uploadFrameUniforms(s);
+    const glm::mat4 viewProj = uploadFrameUniforms(s);
     sceneGpu_->beginFrame(historyValid_ && s.objectMotion);  // without: last frame's matrices = this frame's
+    culledParts_ = sceneGpu_->cullToView(s.viewCulling ? &viewProj : nullptr);
     FrameContext ctx{s, config_, textures_, *shaders_, fbos_, *sceneGpu_, fullscreenVao_.id(), lightSsbo_.id(),
                      lightCount_, casters_, shadowKey_, frameWidth(), frameHeight(), historyValid_,
                      s.varyTaps ? float(frameIndex_ % 1024) * 0.618034f : 0.0f, probes_.get(), probeUbo_.id()};

@@ -130,6 +130,8 @@ public:
     const ProbeVolume* probeVolume() const { return probes_.get(); }
     uint64_t frameIndex() const { return frameIndex_; }
     int lastGeometryPasses() const;
+    // Visible parts the last frame left out of the deep G-buffer as outside the view (gbuffer.view_culling).
+    int lastCulledParts() const { return culledParts_; }
     // The level of the G-buffer textures that holds layer 2 after the last frame (DeepGBufferPass::layer2Level):
     // 0, or the gather's finest tap level L, whose texel T is the ray through level-0 pixel T 2^L + tapSampleOffset(L).
     int lastLayer2Level() const;
@@ -147,7 +149,7 @@ private:
     PipelineConfig makeConfig(const Settings& s) const;
     void prepareResolved(const Settings& s);  // s with lengths already in scene units
     void setupLights(const Settings& s);
-    void uploadFrameUniforms(const Settings& s);
+    glm::mat4 uploadFrameUniforms(const Settings& s);  // returns the frame's view-projection
     FrameContext makeContext(const Settings& s);
     void buildPipeline();
     void runPass(size_t index, FrameContext& ctx);
@@ -191,6 +193,7 @@ private:
     bool historyValid_ = false;
     bool sceneMoved_ = false;  // sceneChanged(Transforms) since setScene: objects move, Motion is written
     uint64_t frameIndex_ = 0;
+    int culledParts_ = 0;
     std::vector<PassTiming> timings_;
     // GpuQueries: two sets of one GL_TIME_ELAPSED query per pass; a set is read back when reused two frames later.
     std::vector<gl::QueryHandle> queries_[2];

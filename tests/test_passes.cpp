@@ -198,6 +198,65 @@ TEST_F(GLTest, AutoLayer2PrepassSplitsTheLayersWhereItCostsNoMoreGeometryWork) {
     }
 }
 
+// gbuffer.view_culling leaves out of the deep G-buffer the parts wholly outside the view, and nothing else: the
+// camera looks down -Z (60 degrees, 4:3) at a wall; quads at z = -4, where the image spans |x| < 3.08: A inside,
+// D across the right edge, E beyond it but inside a 0.25 guard band (|x| < 4.23), C far to the side, and B behind
+// the camera, where it still shadows the wall under a sun from behind (the shadow maps draw every part). The
+// independent answers: which parts the frustum's planes exclude, the shadow, and the image without culling.
+TEST_F(GLTest, ViewCullingLeavesOutOnlyPartsOutsideTheView) {
+    auto scene = std::make_shared<Scene>();
+    const int m = addMaterial(*scene, glm::vec3(0.6f));
+    auto quadAt = [&](float x0, float x1, float y0, float y1, float z) {
+        addQuad(*scene, {x0, y0, z}, {x1, y0, z}, {x1, y1, z}, {x0, y1, z}, m);
+        return scene->parts.back().node;
+    };
+    quadAt(-8.0f, 8.0f, -8.0f, 8.0f, -6.0f);                // the wall
+    quadAt(-2.0f, -1.0f, -0.5f, 0.5f, -4.0f);               // A
+    quadAt(-1.0f, 1.0f, 0.0f, 1.0f, 3.0f);                  // B, behind the camera
+    const int c = quadAt(19.0f, 20.0f, -0.5f, 0.5f, -4.0f);  // C
+    quadAt(2.8f, 3.4f, -0.5f, 0.5f, -4.0f);                 // D
+    quadAt(3.5f, 4.0f, -0.5f, 0.5f, -4.0f);                 // E
+    addSun(*scene, glm::vec3(0.0f, -0.2f, -1.0f), 3.0f);
+    addCamera(*scene, "cam", {0, 0, 0}, {0, 0, -1}, 60.0f);
+    scene->computeBounds();
+    const int W = 64, H = 48;
+    for (float band : {0.0f, 0.25f}) {
+        std::unique_ptr<Renderer> r[2] = {rendererFor(scene, W, H, "cam"), rendererFor(scene, W, H, "cam")};
+        Settings s[2];
+        for (int k : {0, 1}) {
+            s[k].guardBand = band;
+            s[k].viewCulling = k == 0;
+        }
+        auto renderBoth = [&] {
+            for (int k : {0, 1})
+                for (int f = 0; f < 3; ++f) r[k]->render(s[k]);
+            EXPECT_EQ(r[1]->lastCulledParts(), 0);
+            const FloatImage a = r[0]->readFinalRadiance(), b = r[1]->readFinalRadiance();
+            float diff = 0.0f;
+            for (size_t i = 0; i < a.pixels.size(); ++i) diff = std::max(diff, std::abs(a.pixels[i] - b.pixels[i]));
+            EXPECT_EQ(diff, 0.0f) << "band " << band << ": the image without culling";
+            for (const char* name : {"Depth 2", "Normal 2"}) {
+                const Layer2Image a2 = readLayer2(*r[0], name), b2 = readLayer2(*r[1], name);
+                EXPECT_EQ(a2.image.pixels, b2.image.pixels) << name << ", band " << band;
+            }
+            return a;
+        };
+        const FloatImage img = renderBoth();
+        EXPECT_EQ(r[0]->lastCulledParts(), band > 0.0f ? 2 : 3) << "B and C, and E unless the band holds it";
+        // B's shadow on the wall at (0, -1.3, -6), beside the lit wall at (2, -1.3, -6): pixels (32, 33) and (46, 33).
+        EXPECT_LT(img.at(32, 33, 1), 0.5f * img.at(46, 33, 1)) << "the shadow of the part behind the camera";
+
+        // C moved into the view: drawn from the frame it arrives in.
+        scene->nodes[size_t(c)].local.translation = glm::vec3(-19.0f, 1.0f, 0.0f);
+        scene->updateWorldTransforms();
+        for (int k : {0, 1}) r[k]->sceneChanged(SceneChange::Transforms);
+        renderBoth();
+        EXPECT_EQ(r[0]->lastCulledParts(), band > 0.0f ? 1 : 2) << "B, and E unless the band holds it";
+        scene->nodes[size_t(c)].local.translation = glm::vec3(0.0f);
+        scene->updateWorldTransforms();
+    }
+}
+
 // The predicted layer 2 equals the depth-peeled oracle for a still camera.
 TEST_F(GLTest, PredictedLayer2MatchesPeelingForStillCamera) {
     auto scene = cornellScene();

@@ -95,7 +95,7 @@ void DeepGBufferPass::drawScene(FrameContext& ctx, int firstLayer, int layerCoun
             prog.drawLevel.set(drawLevel_);
             ctx.bindSamplers(prog, {{"uPeelDepth", peelDepth}});
             return prog.id();
-        }, masked, true, layered ? layerCount : 1);
+        }, masked, true, layered ? layerCount : 1, true);
     }
 }
 

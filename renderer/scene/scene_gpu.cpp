@@ -23,6 +23,17 @@ SceneGpu::SceneGpu(const Scene& scene) : materials_(scene.materials) {
     std::map<int, std::vector<const MeshPart*>> byMaterial;
     for (const auto& p : scene.parts)
         if (!p.indices.empty()) byMaterial[p.material].push_back(&p);
+    partBounds_.resize(scene.parts.size());
+    for (size_t i = 0; i < scene.parts.size(); ++i) {
+        Aabb& b = partBounds_[i];
+        for (const Vertex& v : scene.parts[i].vertices) {
+            if (!std::isfinite(v.position.x) || !std::isfinite(v.position.y) || !std::isfinite(v.position.z)) {
+                b = Aabb{};
+                break;
+            }
+            b.extend(v.position);
+        }
+    }
     for (const auto& [mat, parts] : byMaterial) {
         Batch b{mat, uint32_t(indices.size()), 0, 0, {}};
         for (const MeshPart* p : parts) {
@@ -97,13 +108,17 @@ std::vector<std::string> SceneGpu::materialTextureDefines(unsigned textures) {
     return defs;
 }
 
-void SceneGpu::draw(const ProgramFor& programFor, bool masked, bool cullBackFaces, int instances) const {
+void SceneGpu::draw(const ProgramFor& programFor, bool masked, bool cullBackFaces, int instances, bool viewCulled) const {
+    const std::vector<char>& drawn = viewCulled ? inView_ : visible_;
+    const bool allDrawn = viewCulled ? allInView_ : allVisible_;
     glBindVertexArray(vao_.id());
     GLuint program = 0;
     unsigned programTextures = ~0u;
     GLint locBase = -1, locEmissive = -1, locCutoff = -1, locPbr = -1, locNormalOcc = -1;
     static const Material kDefault{};
     for (const auto& b : batches_) {
+        if (!allDrawn && std::none_of(b.parts.begin(), b.parts.end(), [&](const Range& r) { return drawn[size_t(r.part)]; }))
+            continue;  // nothing of it drawn: no program or texture changes either
         const Material& m = (b.material >= 0 && b.material < (int)materials_.size()) ? materials_[b.material] : kDefault;
         if (m.masked() != masked) continue;
         auto texOf = [&](int i) -> GLuint { return (i >= 0 && i < (int)textures_.size()) ? textures_[i].id() : 0; };
@@ -136,7 +151,7 @@ void SceneGpu::draw(const ProgramFor& programFor, bool masked, bool cullBackFace
         glBindTextureUnit(4, oTex);
         if (cullBackFaces && !m.doubleSided) glEnable(GL_CULL_FACE);
         else glDisable(GL_CULL_FACE);
-        drawBatch(b, instances);
+        drawBatch(b, instances, drawn, allDrawn);
     }
     glDisable(GL_CULL_FACE);
 }
@@ -159,8 +174,8 @@ uint64_t SceneGpu::geometryBytes(const Scene& scene) {
     return bytes;
 }
 
-void SceneGpu::drawBatch(const Batch& b, int instances) const {
-    if (allVisible_) {
+void SceneGpu::drawBatch(const Batch& b, int instances, const std::vector<char>& drawn, bool allDrawn) const {
+    if (allDrawn) {
         glDrawElementsInstanced(GL_TRIANGLES, GLsizei(b.indexCount), GL_UNSIGNED_INT,
                                 reinterpret_cast<const void*>(uintptr_t(b.firstIndex) * sizeof(uint32_t)), instances);
         return;
@@ -176,7 +191,7 @@ void SceneGpu::drawBatch(const Batch& b, int instances) const {
         count = 0;
     };
     for (const Range& r : b.parts) {
-        if (!visible_[size_t(r.part)]) { flush(); continue; }
+        if (!drawn[size_t(r.part)]) { flush(); continue; }
         if (count == 0) start = r.firstIndex;
         count += r.indexCount;
     }
@@ -200,10 +215,38 @@ void SceneGpu::updateObjects(const Scene& scene) {
     current_ = std::move(models);
     visible_ = std::move(visible);
     allVisible_ = std::find(visible_.begin(), visible_.end(), 0) == visible_.end();
+    inView_ = visible_;  // until the next cullToView()
+    allInView_ = allVisible_;
     if (lastFrame_.size() != n) lastFrame_ = current_;
     nodeOfPart_.resize(n);
     for (size_t i = 0; i < n; ++i) nodeOfPart_[i] = scene.parts[i].node;
     objectsDirty_ = true;
+}
+
+int SceneGpu::cullToView(const glm::mat4* viewProj) {
+    inView_ = visible_;
+    allInView_ = allVisible_;
+    if (!viewProj) return 0;
+    int culled = 0;
+    for (size_t i = 0; i < inView_.size() && i < partBounds_.size(); ++i) {
+        const Aabb& b = partBounds_[i];
+        if (!inView_[i] || !b.valid()) continue;
+        // The clip planes are linear in the corners: a box whose 8 corners are all beyond one is clipped whole,
+        // whatever the signs of w. A NaN compares false and keeps the part.
+        const glm::mat4 m = *viewProj * current_[i];
+        unsigned beyondAll = 63u;
+        for (int c = 0; c < 8 && beyondAll; ++c) {
+            const glm::vec4 q = m * glm::vec4(c & 1 ? b.hi.x : b.lo.x, c & 2 ? b.hi.y : b.lo.y, c & 4 ? b.hi.z : b.lo.z, 1.0f);
+            beyondAll &= unsigned(q.x < -q.w) | unsigned(q.x > q.w) << 1 | unsigned(q.y < -q.w) << 2 |
+                         unsigned(q.y > q.w) << 3 | unsigned(q.z < -q.w) << 4 | unsigned(q.z > q.w) << 5;
+        }
+        if (beyondAll) {
+            inView_[i] = 0;
+            allInView_ = false;
+            ++culled;
+        }
+    }
+    return culled;
 }
 
 void SceneGpu::beginFrame(bool historyValid) {

@@ -34,7 +34,8 @@ public:
     // each material's textures, setting its material uniforms (material.glsl) and binding textures. Back faces
     // are culled except for double-sided materials when cullBackFaces is set.
     // instances > 1: every batch drawn that many times (gl_InstanceID), e.g. once per layer of a layered target.
-    void draw(const ProgramFor& programFor, bool masked, bool cullBackFaces, int instances = 1) const;
+    // viewCulled: the parts the last cullToView() left out are not drawn either.
+    void draw(const ProgramFor& programFor, bool masked, bool cullBackFaces, int instances = 1, bool viewCulled = false) const;
     bool hasMasked() const { return hasMasked_; }
     bool hasOpaque() const { return hasOpaque_; }
     bool empty() const { return batches_.empty(); }
@@ -44,6 +45,10 @@ public:
     // Before a frame's passes: uploads {current, previous} matrices (previous = the last frame's, or the current
     // ones without history) and binds the object buffer at 5.
     void beginFrame(bool historyValid);
+    // Marks the parts whose bounds, moved by their current model matrices, lie wholly beyond one clip plane of
+    // viewProj (what the rasteriser would clip whole), for draws with viewCulled; no matrix: none. Call after
+    // updateObjects(). Returns how many visible parts it leaves out.
+    int cullToView(const glm::mat4* viewProj);
     // After a frame: its matrices become the previous ones.
     void endFrame() { lastFrame_ = current_; }
     // Changes whenever a part moved or its visibility changed (the shadow maps' key).
@@ -59,10 +64,11 @@ private:
         int32_t baseVertex;
         std::vector<Range> parts;  // consecutive sub-ranges, one per part
     };
-    void drawBatch(const Batch& b, int instances) const;
+    void drawBatch(const Batch& b, int instances, const std::vector<char>& drawn, bool allDrawn) const;
     std::vector<glm::mat4> current_, lastFrame_, uploadedPrev_;
-    std::vector<char> visible_;
-    bool allVisible_ = true, objectsDirty_ = true;
+    std::vector<Aabb> partBounds_;  // per part, its vertices as loaded; invalid (never culled) if one is not finite
+    std::vector<char> visible_, inView_;  // inView_: visible and not culled by the last cullToView()
+    bool allVisible_ = true, allInView_ = true, objectsDirty_ = true;
     uint64_t version_ = 1;
     std::vector<int> nodeOfPart_;
     GLsizeiptr objectBytes_ = 0;
