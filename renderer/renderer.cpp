@@ -109,7 +109,6 @@ void Renderer::setScene(std::shared_ptr<const Scene> scene) {
     sceneGpu_ = std::make_unique<SceneGpu>(*scene_);
     lightBounds_ = scene_->bounds;
     probes_.reset();  // the volume traces the old scene
-    sceneMoved_ = false;
     shadowKey_ = 0;
     configValid_ = false;
     historyValid_ = false;
@@ -123,7 +122,6 @@ void Renderer::sceneChanged(unsigned changes) {
     } else if (geometry) {
         sceneGpu_->updateObjects(*scene_);
     }
-    if (changes & unsigned(SceneChange::Transforms)) sceneMoved_ = true;  // from now on: the Motion texture
     if (geometry) {
         const Aabb now = scene_->currentBounds();
         lightBounds_ = now.valid() ? now : scene_->bounds;
@@ -193,7 +191,9 @@ PipelineConfig Renderer::makeConfig(const Settings& s) const {
     c.occlusion = scene_->hasOcclusion();
     c.normalMaps = scene_->hasNormalMaps();
     c.objectIds = options_.sceneEditing;
-    c.objectMotion = s.objectMotion && (options_.sceneEditing || sceneMoved_ || !scene_->animations.empty());
+    // Motion only in frames where a part moved since the last one: otherwise every surface moves with the camera,
+    // which the reprojection follows without it (a still scene in the viewer: Sponza's frame 0.91 x).
+    c.objectMotion = s.objectMotion && sceneGpu_ && sceneGpu_->objectsMoved();
     c.indirect = s.indirect;
     c.seedComposite = s.compositeMode == CompositeMode::Seed;
     c.blur = s.blur;

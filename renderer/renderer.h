@@ -55,10 +55,9 @@ inline unsigned operator|(unsigned a, SceneChange b) { return a | unsigned(b); }
 struct RendererOptions {
     std::string shaderDir = DEEPGI_SHADER_DIR;
     TimingMode timing = TimingMode::WallClock;
-    // The client edits the scene live (the viewer): every frame writes Object ID (picking, the selection outline)
-    // and Motion (each object's own motion, with gbuffer.object_motion). Otherwise Object ID is not written and
-    // Motion only once the scene is animated or has moved (the first sceneChanged(Transforms) restarts the
-    // history once): a still scene pays for neither.
+    // The client edits the scene live (the viewer): every frame writes Object ID (picking, the selection outline).
+    // Otherwise Object ID is not written. Either way Motion (each object's own motion, with gbuffer.object_motion)
+    // is written only in frames where a part moved since the last frame; its coming and going keeps the history.
     bool sceneEditing = false;
 };
 
@@ -191,7 +190,6 @@ private:
     bool softwareGl_ = false;      // llvmpipe/softpipe: the platform-dependent auto settings follow it
     bool hasVertexLayer_ = false;  // GL_ARB_shader_viewport_layer_array: gbuffer.layer_routing can be vertex
     bool historyValid_ = false;
-    bool sceneMoved_ = false;  // sceneChanged(Transforms) since setScene: objects move, Motion is written
     uint64_t frameIndex_ = 0;
     int culledParts_ = 0;
     std::vector<PassTiming> timings_;

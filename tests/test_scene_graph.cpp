@@ -215,9 +215,10 @@ TEST_F(GLTest, ObjectIdBufferIsShownByTheBufferView) {
     EXPECT_EQ(int(t.values[0]), box + 1);
 }
 
-// A still scene pays for neither editing target: without RendererOptions::sceneEditing no Object ID is written and
-// no Motion until something moves, and the image is bit for bit the editing renderer's (the targets change what is
-// written, never what is seen). The first move adds Motion and keeps the temporal history.
+// A still scene pays for neither editing target: without RendererOptions::sceneEditing no Object ID is written, and
+// in no renderer Motion while nothing moves; the image is bit for bit the editing renderer's (the targets change what
+// is written, never what is seen). A frame in which an object moved adds Motion, the next still frame drops it, and
+// both keep the temporal history.
 TEST_F(GLTest, StillSceneWritesNoEditingTargets) {
     auto scene = floorAndBox();
     auto plain = rendererFor(scene, 48, 48, "top"), editing = rendererFor(scene, 48, 48, "top", sceneEditing());
@@ -230,7 +231,7 @@ TEST_F(GLTest, StillSceneWritesNoEditingTargets) {
     EXPECT_FALSE(plain->textures().has("Motion"));
     EXPECT_EQ(plain->objectAt(24, 24), -1) << "no picking without the Object ID target";
     EXPECT_TRUE(editing->textures().has("Object ID"));
-    EXPECT_TRUE(editing->textures().has("Motion"));
+    EXPECT_FALSE(editing->textures().has("Motion")) << "nothing moved: every surface moves with the camera";
     for (const char* layer : {"Final Radiance", "Output Radiance", "Depth 2"}) {
         const int level = std::string(layer) == "Depth 2" ? plain->lastLayer2Level() : 0;  // where layer 2 is drawn
         const FloatImage a = plain->readLayer(layer, level), b = editing->readLayer(layer, level);
@@ -242,11 +243,16 @@ TEST_F(GLTest, StillSceneWritesNoEditingTargets) {
     const int box = nodeNamed(*scene, "box");
     scene->nodes[size_t(box)].local.translation += glm::vec3(0.05f, 0.0f, 0.0f);
     scene->updateWorldTransforms();
-    plain->sceneChanged(SceneChange::Transforms);
-    plain->render(s);
-    EXPECT_TRUE(plain->textures().has("Motion")) << "objects move: their motion is written";
+    for (auto* r : {plain.get(), editing.get()}) {
+        r->sceneChanged(SceneChange::Transforms);
+        r->render(s);
+        EXPECT_TRUE(r->textures().has("Motion")) << "an object moved: its motion is written";
+        EXPECT_TRUE(r->historyValid()) << "the first move keeps the temporal history";
+        r->render(s);
+        EXPECT_FALSE(r->textures().has("Motion")) << "still again";
+        EXPECT_TRUE(r->historyValid()) << "the stop keeps the temporal history";
+    }
     EXPECT_FALSE(plain->textures().has("Object ID"));
-    EXPECT_TRUE(plain->historyValid()) << "the first move keeps the temporal history";
 }
 
 // A light moved live: after sceneChanged(Lights) the next frame equals a fresh renderer's first frame of the new

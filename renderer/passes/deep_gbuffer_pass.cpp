@@ -38,7 +38,7 @@ void DeepGBufferPass::table(const PipelineConfig& c, PassTable& t) const {
                  MemoryGroup::Extra, Visualize::ObjectId, "Node index + 1 of the surface of each layer (0 = sky): picking"});
     if (c.objectMotion)
         t.write({"Motion", {"Motion 1", "Motion 2"}, GL_RGBA16F, GL_TEXTURE_2D_ARRAY, SizeRule::screen(), materialLevels(c), MemoryGroup::Extra,
-                 Visualize::Color, "World-space position change of each layer's surface since last frame (previous - current; moving objects)"});
+                 Visualize::Color, "World-space position change of each layer's surface since last frame (previous - current), in frames where an object moved"});
     writeMaterialTextures(c, t);
     if (c.depthPeel)
         t.write({"Peel Depth", {"Peel Depth"}, GL_DEPTH_COMPONENT32, GL_TEXTURE_2D, SizeRule::screen(), 1,

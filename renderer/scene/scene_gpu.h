@@ -49,6 +49,8 @@ public:
     // viewProj (what the rasteriser would clip whole), for draws with viewCulled; no matrix: none. Call after
     // updateObjects(). Returns how many visible parts it leaves out.
     int cullToView(const glm::mat4* viewProj);
+    // Whether a part's model matrix differs from the last frame's (endFrame()): this frame has object motion.
+    bool objectsMoved() const { return current_ != lastFrame_; }
     // After a frame: its matrices become the previous ones.
     void endFrame() { lastFrame_ = current_; }
     // Changes whenever a part moved or its visibility changed (the shadow maps' key).
