@@ -66,10 +66,10 @@ std::vector<std::unique_ptr<RenderPass>> Renderer::standardPasses() {
     // The order of this list only breaks ties: the tables decide what must run before what.
     std::vector<std::unique_ptr<RenderPass>> p;
     p.push_back(std::make_unique<ShadowMapPass>());
-    p.push_back(std::make_unique<ProbeUpdatePass>());
     p.push_back(std::make_unique<EnvironmentPass>());
     p.push_back(std::make_unique<DeepGBufferPass>());
     p.push_back(std::make_unique<ReprojectRadiancePass>());
+    p.push_back(std::make_unique<ProbeUpdatePass>());  // as late as it can: its rays are traced beside the draws above
     p.push_back(std::make_unique<InputRadiancePass>());
     p.push_back(std::make_unique<GatherSelectPass>());
     p.push_back(std::make_unique<RadiosityGatherPass>());
@@ -504,6 +504,14 @@ void Renderer::render(const Settings& user) {
         queryNames.clear();
     }
     if (finish) glFinish();
+    // Each pass's begin() counts in its own timing (wall clock or CPU time of this thread; queries cannot see it).
+    std::vector<double> beginMs(passes_.size(), 0.0);
+    for (size_t index : order_) {
+        const auto b0 = clock::now();
+        const double c0 = cpu ? threadCpuMs() : 0.0;
+        passes_[index]->begin(ctx);
+        beginMs[index] = cpu ? threadCpuMs() - c0 : std::chrono::duration<double, std::milli>(clock::now() - b0).count();
+    }
     size_t q = 0;
     bool rejected = false;  // a program failed its trial: this frame's outputs must not feed the next
     for (size_t index : order_) {
@@ -535,7 +543,7 @@ void Renderer::render(const Settings& user) {
         if (watch && !checkTrials(p->name(), s.shaderWatchdogMs, watchStart)) rejected = true;
         if (!gpu && finish) {
             glFinish();
-            timings_.push_back({p->name(), cpu ? threadCpuMs() - c0 : std::chrono::duration<double, std::milli>(clock::now() - t0).count()});
+            timings_.push_back({p->name(), beginMs[index] + (cpu ? threadCpuMs() - c0 : std::chrono::duration<double, std::milli>(clock::now() - t0).count())});
         }
     }
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
@@ -590,6 +598,7 @@ void Renderer::executePass(const std::string& passName, const Settings& user) {
     FrameContext ctx = makeContext(s);
     for (size_t i : order_)
         if (passName == passes_[i]->name()) {
+            passes_[i]->begin(ctx);  // alone, its begin() has nothing to run beside
             runPass(i, ctx);
             glBindFramebuffer(GL_FRAMEBUFFER, 0);
             return;

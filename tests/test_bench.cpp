@@ -290,7 +290,7 @@ TEST(BenchCli, TinyRunWritesResults) {
     std::ifstream csv(dir / "results.csv");
     std::string header, line;
     std::getline(csv, header);
-    std::vector<std::string> names = {"Shadow maps", "Probe update", "Environment", "Deep G-buffer", "Reproject radiance", "Input radiance", "Gather select", "Radiosity gather",
+    std::vector<std::string> names = {"Shadow maps", "Environment", "Deep G-buffer", "Reproject radiance", "Probe update", "Input radiance", "Gather select", "Radiosity gather",
                                       "Ambient occlusion", "Bilateral blur", "Temporal blend", "Composite"};
     std::string expected;
     for (const auto& c : csvColumns(names)) expected += (expected.empty() ? "" : ",") + c;

@@ -370,7 +370,7 @@ TEST_F(GLTest, GraphListsThePipelineInOrder) {
     const auto g = r->graph();
     std::vector<std::string> order;
     for (const auto& n : g) order.push_back(n.name + (n.enabled ? "" : " (off)"));
-    EXPECT_EQ(order, (std::vector<std::string>{"Shadow maps", "Probe update", "Environment (off)", "Deep G-buffer", "Reproject radiance", "Input radiance",
+    EXPECT_EQ(order, (std::vector<std::string>{"Shadow maps", "Environment (off)", "Deep G-buffer", "Reproject radiance", "Probe update", "Input radiance",
                                                "Gather select", "Radiosity gather", "Ambient occlusion (off)", "Bilateral blur",
                                                "Temporal blend", "Composite"}));
     // On llvmpipe radiosity.interleave=auto interleaves: the selection gives the reused blocks the reprojected
@@ -413,7 +413,7 @@ TEST(GraphCli, PrintsThePipelineAndWritesGraphviz) {
     const std::string dot = ::testing::TempDir() + "deepgi_graph_" + std::to_string(::getpid()) + ".dot";
     std::string out;
     ASSERT_EQ(run("--size 64x48 --dot '" + dot + "'", out), 0) << out;
-    for (const char* part : {" 1. Shadow maps", " 2. Probe update", " 3. Deep G-buffer", " 6. Gather select", " 7. Radiosity gather", "10. Composite",
+    for (const char* part : {" 1. Shadow maps", " 2. Deep G-buffer", " 4. Probe update", " 6. Gather select", " 7. Radiosity gather", "10. Composite",
                              "Ambient occlusion (disabled", "Radiosity Scratch", "R11F_G11F_B10F  64x48 (screen)", "uRadiance@"})
         EXPECT_TRUE(contains(out, part)) << part << "\n" << out;
     EXPECT_LT(out.find("Bilateral blur"), out.find("Temporal blend"));

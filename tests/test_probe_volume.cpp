@@ -9,9 +9,11 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
+#include <algorithm>
 #include <cstdio>
 #include <fstream>
 #include <limits>
+#include <memory>
 #include <sstream>
 #include <thread>
 
@@ -467,6 +469,51 @@ TEST(ProbeVolume, ResetHistoryUpdatesAsANewVolume) {
     EXPECT_TRUE(changed.probeData() == fresh.probeData());
 }
 
+// An update in two halves (startUpdate() with helpers tracing in the background, finishUpdate() joining them) is
+// update() to the bit, with multi-bounce (the helpers read the atlases the commit then writes), with a pending
+// update finished by resetHistory() and by the next startUpdate(), and with none to finish. A volume destroyed
+// while its helpers trace joins them.
+TEST(ProbeVolume, UpdateInTwoHalvesIsTheUpdateAtOnce) {
+    const auto scene = deepgi::test::cornellScene();
+    Settings s;
+    s.probeRaysPerFrame = 2000;  // 15 probes of 128 rays per update
+    s.damping = 0.0f;            // the probes' own bounce: the traced rays read the committed atlases
+    ProbeVolume once(*scene, s, 11, 2), halves(*scene, s, 11, 3);
+    for (int u = 0; u < 4; ++u) {
+        once.update(s);
+        halves.startUpdate(s, 2, true);
+        EXPECT_TRUE(halves.updatePending());
+        const ProbeUpdateStats st = halves.finishUpdate();
+        EXPECT_FALSE(halves.updatePending());
+        EXPECT_EQ(st.probesUpdated, 15);
+    }
+    EXPECT_EQ(halves.finishUpdate().probesUpdated, 0) << "nothing pending";
+    // Finished by the next start, and by a restart of the history: as if each had run at once.
+    halves.startUpdate(s, 2, true);
+    halves.startUpdate(s, 2, true);
+    halves.resetHistory();
+    once.update(s);
+    once.update(s);
+    once.resetHistory();
+    for (int u = 0; u < 2; ++u) {
+        once.update(s);
+        halves.startUpdate(s, u, false);  // no helper: finishUpdate()'s thread traces them all
+        halves.finishUpdate();
+    }
+    EXPECT_EQ(halves.updateCount(), once.updateCount());
+    for (int i = 0; i < once.probeCount(); ++i) EXPECT_EQ(halves.updatesOf(i), once.updatesOf(i)) << "probe " << i;
+    EXPECT_TRUE(halves.irradianceAtlas() == once.irradianceAtlas());
+    EXPECT_TRUE(halves.depthAtlas() == once.depthAtlas());
+    EXPECT_TRUE(halves.radianceAtlas() == once.radianceAtlas());
+    EXPECT_TRUE(halves.probeData() == once.probeData());
+
+    Settings all = s;
+    all.probeRaysPerFrame = 1 << 20;  // every probe: long enough to be cut short
+    auto dropped = std::make_unique<ProbeVolume>(*scene, all, 11, 2);
+    dropped->startUpdate(all, 1, true);
+    dropped.reset();  // joins its helper (a sanitizer build or a hang would say otherwise)
+}
+
 // A moved object keeps the probes' history (ProbeVolume::sceneChanged(false)) but starts the settle count again and
 // places the probes around it again: a volume settled before the move goes on updating until it agrees with a new
 // volume settled on the moved scene. Before this, the settled volume stopped at once and kept the box's light and
@@ -560,6 +607,35 @@ TEST_F(GLTest, ProbesStartOverWhenTheBounceDampingChanges) {
         sumMulti += b.pixels[i];
     }
     EXPECT_GT(sumMulti, 1.05 * sumOne) << "multi-bounce probes hold more light than one-bounce ones";
+}
+
+// probes.overlap starts the probe rays with the frame, beside the draws of the passes before the probe pass: every
+// frame is the one with all of them traced in the probe pass, to the bit, and the probe pass runs after the draws
+// that do not need it, before the first pass that reads the probes.
+TEST_F(GLTest, ProbeRaysTracedBesideTheDrawsGiveTheSameFrames) {
+    const auto scene = deepgi::test::cornellScene();
+    Settings on;
+    on.probeRaysPerFrame = 4096;
+    on.damping = 0.0f;
+    Settings off = on;
+    off.probeOverlap = false;
+    auto a = deepgi::test::rendererFor(scene, 48, 36, "front"), b = deepgi::test::rendererFor(scene, 48, 36, "front");
+    for (int f = 0; f < 4; ++f) {
+        a->render(on);
+        b->render(off);
+        const FloatImage ia = a->readFinalRadiance(), ib = b->readFinalRadiance();
+        ASSERT_EQ(ia.pixels.size(), ib.pixels.size());
+        for (size_t i = 0; i < ia.pixels.size(); ++i) ASSERT_EQ(ia.pixels[i], ib.pixels[i]) << "frame " << f << ", value " << i;
+        const FloatImage pa = a->readLayer("Probe Irradiance"), pb = b->readLayer("Probe Irradiance");
+        ASSERT_TRUE(pa.pixels == pb.pixels) << "frame " << f;
+    }
+    EXPECT_FALSE(a->probeVolume()->updatePending());
+    std::vector<std::string> order;
+    for (const auto& n : a->graph()) order.push_back(n.name);
+    auto at = [&](const char* name) { return std::find(order.begin(), order.end(), name) - order.begin(); };
+    EXPECT_GT(at("Probe update"), at("Deep G-buffer"));
+    EXPECT_GT(at("Probe update"), at("Reproject radiance"));
+    EXPECT_LT(at("Probe update"), at("Input radiance"));
 }
 
 // Bad input: a scene without geometry is a clear error, never a crash.

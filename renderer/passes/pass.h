@@ -239,6 +239,9 @@ public:
     // Every texture this pass reads and writes in a pipeline of config c (its single declaration).
     virtual void table(const PipelineConfig& c, PassTable& t) const = 0;
     virtual bool enabled(const PipelineConfig&) const { return true; }
+    // Called for every enabled pass before the frame's first pass runs: CPU work a pass may start on other threads
+    // and finish in its execute(), beside the draws of the passes ordered before it. Must not issue GL commands.
+    virtual void begin(FrameContext&) {}
     virtual void execute(FrameContext& ctx) = 0;
 };
 

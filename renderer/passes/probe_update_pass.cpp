@@ -36,7 +36,7 @@ void ProbeUpdatePass::table(const PipelineConfig& c, PassTable& t) const {
                  "with a ray through the texel): the gather fills the hemisphere sectors the screen did not cover"});
 }
 
-void ProbeUpdatePass::execute(FrameContext& ctx) {
+void ProbeUpdatePass::begin(FrameContext& ctx) {
     ProbeVolume& v = *ctx.probes;
     // New lights, another bounce damping (the probes' bounce is damped like the screen's), or a new volume: every
     // probe starts over; a settled volume would otherwise keep the old answer for good.
@@ -56,14 +56,25 @@ void ProbeUpdatePass::execute(FrameContext& ctx) {
         lightKey_ = key;
     }
     const bool settled = v.settled(ctx.settings);
-    const bool all = uploadedGeneration_ != ctx.textures.generation() || uploadedVolume_ != &v;
-    if (!settled || all) {  // settled and uploaded: converged under these lights, the textures hold
-        // New textures (a resize, a pipeline change) only need the settled state uploaded again: another update
-        // would make the probes, and so the image, depend on how many times the textures were reallocated.
-        if (!settled) v.update(ctx.settings);
-        if (ctx.config.sky) v.uploadSkyTexture(ctx.texture("Probe Sky Irradiance"), all);
+    allTexels_ = uploadedGeneration_ != ctx.textures.generation() || uploadedVolume_ != &v;
+    upload_ = !settled || allTexels_;  // settled and uploaded: converged under these lights, the textures hold
+    // New textures (a resize, a pipeline change) only need the settled state uploaded again: another update would
+    // make the probes, and so the image, depend on how many times the textures were reallocated.
+    update_ = !settled;
+    const ProbeSettings& ps = ctx.settings;
+    if (update_ && ps.probeOverlap) v.startUpdate(ctx.settings, v.threads() - 1, true);  // this thread joins in execute()
+}
+
+void ProbeUpdatePass::execute(FrameContext& ctx) {
+    ProbeVolume& v = *ctx.probes;
+    if (update_) {
+        if (v.updatePending()) v.finishUpdate();
+        else v.update(ctx.settings);  // probes.overlap off: all of it here
+    }
+    if (upload_) {
+        if (ctx.config.sky) v.uploadSkyTexture(ctx.texture("Probe Sky Irradiance"), allTexels_);
         v.uploadTextures(ctx.texture("Probe Irradiance"), ctx.texture("Probe Depth"), ctx.texture("Probe Data"),
-                         ctx.config.probeDirectionalFill ? ctx.texture("Probe Radiance") : 0, all);
+                         ctx.config.probeDirectionalFill ? ctx.texture("Probe Radiance") : 0, allTexels_);
         uploadedGeneration_ = ctx.textures.generation();
         uploadedVolume_ = &v;
     }

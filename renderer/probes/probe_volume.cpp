@@ -20,7 +20,9 @@
 #include <string>
 #include <thread>
 
+#include <sys/resource.h>
 #include <time.h>
+#include <unistd.h>
 
 namespace deepgi {
 namespace {
@@ -83,6 +85,15 @@ void parallelFor(int n, int threads, const F& f) {
     worker();
     for (auto& th : pool) th.join();
     if (error) std::rethrow_exception(error);
+}
+
+// The calling thread gives way to the process's other threads: nice 19 (per thread on Linux). A helper that traces
+// beside the frame's draws then takes only the CPU they leave; it cannot hold the frame up for long, as the thread
+// that finishes the update traces at normal priority and waits only for each helper's current probe.
+void yieldToOtherThreads() {
+#ifdef __linux__
+    setpriority(PRIO_PROCESS, id_t(gettid()), 19);
+#endif
 }
 
 double msSince(std::chrono::steady_clock::time_point start) {
@@ -267,7 +278,10 @@ ProbeGrid fitProbeGrid(const Aabb& bounds, const Settings& s) {
     return g;
 }
 
-void ProbeVolume::setViewBias(const Settings& s) { viewBias_ = s.probeViewBias * grid_.minSpacing(); }
+void ProbeVolume::setViewBias(const Settings& s) {
+    finishUpdate();  // a pending update's lookups read it
+    viewBias_ = s.probeViewBias * grid_.minSpacing();
+}
 
 bool ProbeVolume::layoutChanged(const Settings& a, const Settings& b) {
     return a.probeSpacing != b.probeSpacing || a.probeRelativeSpacing != b.probeRelativeSpacing ||
@@ -352,7 +366,35 @@ ProbeVolume::ProbeVolume(const Scene& scene, const Settings& s, uint64_t seed, i
     dirtyRowHi_ = tileRows_;
 }
 
-ProbeVolume::~ProbeVolume() = default;
+// What one update traces with (read-only while its threads run) and the sums they fill per batch slot, from
+// startUpdate() to the commit in finishUpdate().
+struct ProbeVolume::Flight {
+    std::chrono::steady_clock::time_point start;
+    double cpuStart = 0.0;
+    float feedback = 0.0f, hysteresis = 0.0f, insideFraction = 0.0f;
+    std::vector<int> batch;  // the probes, one per slot
+    std::vector<Light> lights;
+    bool sky = false;
+    glm::vec3 uniformSky{0.0f};
+    int skySamples = 0;
+    std::vector<glm::vec3> dirs;
+    // Per slot, as arrays per texel: irradiance sums (r, g, b, weight), depth sums (d, d^2, weight), the uniform
+    // sky's as newIrr, the map's (sum c L / pdf / n), and per radiance texel the sum of L (rgb), rays, sum of hit
+    // distances (missDistance_ for a miss).
+    std::vector<float> newIrr, newDepth, newSky, newSkyMap, newRad;
+    std::vector<uint8_t> inside;
+    std::atomic<uint64_t> shadowRays{0};
+    std::atomic<int> next{0};  // the next slot to trace
+    std::exception_ptr error;  // the first exception of a tracing thread, rethrown by finishUpdate()
+    std::mutex errorMutex;
+    std::vector<std::thread> helpers;
+};
+
+ProbeVolume::~ProbeVolume() {
+    if (!flight_) return;
+    flight_->next.store(int(flight_->batch.size()));  // the helpers stop after their current probe
+    for (std::thread& t : flight_->helpers) t.join();
+}
 
 glm::vec3 ProbeVolume::probePosition(int probe) const {
     return grid_.gridPosition(grid_.coord(probe)) + offset_[size_t(probe)];
@@ -464,6 +506,7 @@ bool ProbeVolume::converging() const {
 // The rotations and the round-robin restart too: the volume then updates as a new one would under these lights,
 // whatever came before (a capture re-rendered headless matches the viewer that changed its lights on the way).
 void ProbeVolume::resetHistory() {
+    finishUpdate();
     std::fill(updates_.begin(), updates_.end(), 0);
     std::fill(sinceChange_.begin(), sinceChange_.end(), 0);
     historyKept_ = false;
@@ -557,37 +600,44 @@ glm::vec3 ProbeVolume::radiance(const glm::vec3& x, const glm::vec3& n, const gl
 }
 
 ProbeUpdateStats ProbeVolume::update(const Settings& s) {
-    const float feedback = 1.0f - std::clamp(s.damping, 0.0f, 1.0f);
-    const auto start = std::chrono::steady_clock::now();
-    const double cpuStart = processCpuMs();
-    ProbeUpdateStats stats;
+    startUpdate(s, threads_ - 1, false);
+    return finishUpdate();
+}
+
+void ProbeVolume::startUpdate(const Settings& s, int helpers, bool background) {
+    if (flight_) finishUpdate();  // one in flight at a time: the earlier one commits first, as in sequence
+    auto flight = std::make_unique<Flight>();
+    Flight& f = *flight;
+    f.start = std::chrono::steady_clock::now();
+    f.cpuStart = processCpuMs();
+    f.hysteresis = std::min(std::max(s.probeHysteresis, 0.0f), 0.999f);
+    f.feedback = 1.0f - std::clamp(s.damping, 0.0f, 1.0f);
     const int count = grid_.count();
     const int raysPerProbe = std::max(1, std::min(s.probeRaysPerProbe, std::max(1, s.probeRaysPerFrame)));
     const int budget = std::max(1, s.probeRaysPerFrame / raysPerProbe);
     // The next active probes, round-robin over the grid (probes disabled during updates drop out).
-    std::vector<int> batch;
+    std::vector<int>& batch = f.batch;
     for (int scanned = 0; scanned < count && int(batch.size()) < budget; ++scanned) {
         const int p = int(cursor_ % size_t(count));
         cursor_ = (cursor_ + 1) % size_t(count);
         if (state_[p] == ProbeState::Active) batch.push_back(p);
     }
-    if (batch.empty()) {
-        ++updateIndex_;
-        stats.milliseconds = msSince(start);
-        return stats;
+    if (batch.empty()) {  // finishUpdate() only counts it
+        flight_ = std::move(flight);
+        return;
     }
-    const std::vector<Light> lights = effectiveLights(scene_, s);
+    f.lights = effectiveLights(scene_, s);
     // The sky: allocated while the environment lights, freed when it stops.
     if (!environmentOn(scene_, s)) sky_.clear();  // as the pipeline's config.sky (an all-black map: zeros)
     else if (sky_.empty()) {
         sky_.assign(irradiance_.size(), 0.0f);
         for (size_t i = 3; i < sky_.size(); i += 4) sky_[i] = 1.0f;
     }
-    const bool sky = hasSky();
+    f.sky = hasSky();
     // The uniform sky through the rays that miss (a ratio estimate: exact for an open hemisphere); the map by
     // importance-sampled rays of its own (an absolute estimate: c x L / pdf), skySamples of them per probe.
-    const glm::vec3 uniformSky(std::max(0.0f, s.skyRadiance) * std::max(0.0f, s.environmentIntensity));
-    const bool skyMap = sky && scene_.environment != nullptr;
+    f.uniformSky = glm::vec3(std::max(0.0f, s.skyRadiance) * std::max(0.0f, s.environmentIntensity));
+    const bool skyMap = f.sky && scene_.environment != nullptr;
     if (skyMap && (skyMapKey_ != scene_.environment.get() || skyMapIntensity_ != s.environmentIntensity ||
                    skyMapRotation_ != s.environmentRotation)) {
         Settings mapOnly = s;
@@ -597,83 +647,128 @@ ProbeUpdateStats ProbeVolume::update(const Settings& s) {
         skyMapIntensity_ = s.environmentIntensity;
         skyMapRotation_ = s.environmentRotation;
     }
-    const int skySamples = skyMap && skyMapSampler_->sampled() ? std::max(16, raysPerProbe / 4) : 0;
+    f.skySamples = skyMap && skyMapSampler_->sampled() ? std::max(16, raysPerProbe / 4) : 0;
     const glm::mat3 rotation = randomRotation(seed_, updateIndex_);
-    std::vector<glm::vec3> dirs(static_cast<size_t>(raysPerProbe));
-    for (int i = 0; i < raysPerProbe; ++i) dirs[i] = rotation * fibonacciDirection(i, raysPerProbe);
-    const float insideFraction = s.probeInsideFraction;
+    f.dirs.resize(static_cast<size_t>(raysPerProbe));
+    for (int i = 0; i < raysPerProbe; ++i) f.dirs[i] = rotation * fibonacciDirection(i, raysPerProbe);
+    f.insideFraction = s.probeInsideFraction;
 
-    // Per batch slot, as arrays per texel: irradiance sums (r, g, b, weight), depth sums (d, d^2, weight).
-    const size_t irrTexels = irrDirs_.size(), depthTexels = depthDirs_.size();
-    std::vector<float> newIrr(batch.size() * irrTexels * 4, 0.0f), newDepth(batch.size() * depthTexels * 3, 0.0f);
-    std::vector<float> newSky(sky ? batch.size() * irrTexels * 4 : 0, 0.0f);  // as newIrr, the uniform sky alone
-    std::vector<float> newSkyMap(skySamples ? batch.size() * irrTexels * 4 : 0, 0.0f);  // the map: sum c L / pdf / n
-    const size_t radTexels = size_t(radN_) * radN_;
-    // Per slot and texel: sum of L (rgb), rays, sum of the hit distances (missDistance_ for a miss).
-    std::vector<float> newRad(batch.size() * radTexels * 5, 0.0f);
-    std::vector<uint8_t> inside(batch.size(), 0);
-    std::atomic<uint64_t> shadowRays{0};
-    parallelFor(int(batch.size()), threads_, [&](int slot) {
-        const int probe = batch[slot];
-        const glm::vec3 origin = probePosition(probe);
-        float* irr = &newIrr[size_t(slot) * irrTexels * 4];
-        float* dep = &newDepth[size_t(slot) * depthTexels * 3];
-        uint64_t shadow = 0;
-        int back = 0;
-        for (const glm::vec3& d : dirs) {
-            const ProbeHit h = tracer_.intersect(origin, d, 0.0f, kInf);
-            const float distance = h.hit ? std::min(h.distance, maxDistance_) : maxDistance_;
-            bool hasRadiance = !h.backFace;
-            glm::vec3 radiance(0.0f);  // a miss sees nothing (the background lights nothing)
-            if (h.hit && !h.backFace) {
-                // The probes read last update's state only (commit comes after the join): deterministic.
-                // Multi-bounce through the probes themselves, damped as the screen's feedback is (1 = one bounce).
-                glm::vec3 e = tracer_.directIrradiance(h, lights, shadow) + feedback * irradiance(h.position, h.normal);
-                if (sky) e += skyIrradiance(h.position, h.normal);  // the sky's direct light at the hit
-                radiance = h.emission + h.albedo * (1.0f / kPi) * e;
-                if (!finite3(radiance)) hasRadiance = false;
-            }
-            back += h.backFace ? 1 : 0;
-            if (sky && hasRadiance) {  // a ray that leaves the scene brings the environment's radiance
-                float* sk = &newSky[size_t(slot) * irrTexels * 4];
-                accumulateIrradiance(irrTexels, irrDirs_.x.data(), irrDirs_.y.data(), irrDirs_.z.data(), d,
-                                     h.hit ? glm::vec3(0.0f) : uniformSky, sk, sk + irrTexels,
-                                     sk + 2 * irrTexels, sk + 3 * irrTexels);
-            }
-            if (hasRadiance) {  // binned by direction: the texel of the octahedral map the ray leaves through
-                float* rad = &newRad[(size_t(slot) * radTexels + octTexel(d, radN_)) * 5];
-                for (int c = 0; c < 3; ++c) rad[c] += radiance[c];
-                rad[3] += 1.0f;
-                rad[4] += h.hit ? std::min(h.distance, missDistance_) : missDistance_;
-            }
-            if (hasRadiance)
-                accumulateIrradiance(irrTexels, irrDirs_.x.data(), irrDirs_.y.data(), irrDirs_.z.data(), d, radiance,
-                                     irr, irr + irrTexels, irr + 2 * irrTexels, irr + 3 * irrTexels);
-            const size_t lobe = octTexel(d, depthN_);
-            accumulateDepth(&depthLobeBlocks_[0] + depthLobeStart_[lobe], &depthLobeBlocks_[0] + depthLobeStart_[lobe + 1],
-                            depthDirs_.x.data(), depthDirs_.y.data(), depthDirs_.z.data(), d, distance, dep,
-                            dep + depthTexels, dep + 2 * depthTexels);
-        }
-        if (skySamples) {  // the map's share: its own rays, drawn from its density, blocked by either face
-            float* sk = &newSkyMap[size_t(slot) * irrTexels * 4];
-            const uint64_t base = splitmix64(seed_ ^ (uint64_t(probe) * 0x9E3779B97F4A7C15ull) ^ (updateIndex_ << 20));
-            for (int j = 0; j < skySamples; ++j) {
-                const uint64_t h1 = splitmix64(base + uint64_t(j));
-                const EnvironmentLight::Sample es = skyMapSampler_->sample(unitFloat(h1), unitFloat(splitmix64(h1)));
-                if (!(es.pdf > 0.0f)) continue;
-                if (tracer_.intersect(origin, es.direction, 0.0f, kInf).hit) continue;
-                const glm::vec3 L = es.radiance / (es.pdf * float(skySamples));
-                if (!finite3(L)) continue;
-                accumulateIrradiance(irrTexels, irrDirs_.x.data(), irrDirs_.y.data(), irrDirs_.z.data(), es.direction, L,
-                                     sk, sk + irrTexels, sk + 2 * irrTexels, sk + 3 * irrTexels);
-            }
-        }
-        inside[slot] = float(back) > insideFraction * float(dirs.size()) ? 1 : 0;
-        shadowRays.fetch_add(shadow);
-    });
+    const size_t irrTexels = irrDirs_.size(), depthTexels = depthDirs_.size(), radTexels = size_t(radN_) * radN_;
+    f.newIrr.assign(batch.size() * irrTexels * 4, 0.0f);
+    f.newDepth.assign(batch.size() * depthTexels * 3, 0.0f);
+    f.newSky.assign(f.sky ? batch.size() * irrTexels * 4 : 0, 0.0f);
+    f.newSkyMap.assign(f.skySamples ? batch.size() * irrTexels * 4 : 0, 0.0f);
+    f.newRad.assign(batch.size() * radTexels * 5, 0.0f);
+    f.inside.assign(batch.size(), 0);
+    flight_ = std::move(flight);
+    // The helpers trace slots until none is left; finishUpdate()'s thread joins them. The volume's state is only
+    // read until the commit, which happens after the join, on that thread.
+    const int threads = std::max(0, std::min(helpers, int(batch.size()) - 1));
+    for (int i = 0; i < threads; ++i)
+        f.helpers.emplace_back([this, &f, background] {
+            if (background) yieldToOtherThreads();
+            traceSlots(f);
+        });
+}
 
+void ProbeVolume::traceSlots(Flight& f) const {
+    try {
+        for (int slot; (slot = f.next.fetch_add(1)) < int(f.batch.size());) traceSlot(f, slot);
+    } catch (...) {
+        std::lock_guard<std::mutex> lock(f.errorMutex);
+        if (!f.error) f.error = std::current_exception();
+        f.next.store(int(f.batch.size()));
+    }
+}
+
+void ProbeVolume::traceSlot(Flight& f, int slot) const {
+    const std::vector<glm::vec3>& dirs = f.dirs;
+    const std::vector<Light>& lights = f.lights;
+    const bool sky = f.sky;
+    const glm::vec3& uniformSky = f.uniformSky;
+    const int skySamples = f.skySamples;
+    const float feedback = f.feedback, insideFraction = f.insideFraction;
+    const size_t irrTexels = irrDirs_.size(), depthTexels = depthDirs_.size(), radTexels = size_t(radN_) * radN_;
+    const int probe = f.batch[slot];
+    const glm::vec3 origin = probePosition(probe);
+    float* irr = &f.newIrr[size_t(slot) * irrTexels * 4];
+    float* dep = &f.newDepth[size_t(slot) * depthTexels * 3];
+    uint64_t shadow = 0;
+    int back = 0;
+    for (const glm::vec3& d : dirs) {
+        const ProbeHit h = tracer_.intersect(origin, d, 0.0f, kInf);
+        const float distance = h.hit ? std::min(h.distance, maxDistance_) : maxDistance_;
+        bool hasRadiance = !h.backFace;
+        glm::vec3 radiance(0.0f);  // a miss sees nothing (the background lights nothing)
+        if (h.hit && !h.backFace) {
+            // The probes read last update's state only (commit comes after the join): deterministic.
+            // Multi-bounce through the probes themselves, damped as the screen's feedback is (1 = one bounce).
+            glm::vec3 e = tracer_.directIrradiance(h, lights, shadow) + feedback * irradiance(h.position, h.normal);
+            if (sky) e += skyIrradiance(h.position, h.normal);  // the sky's direct light at the hit
+            radiance = h.emission + h.albedo * (1.0f / kPi) * e;
+            if (!finite3(radiance)) hasRadiance = false;
+        }
+        back += h.backFace ? 1 : 0;
+        if (sky && hasRadiance) {  // a ray that leaves the scene brings the environment's radiance
+            float* sk = &f.newSky[size_t(slot) * irrTexels * 4];
+            accumulateIrradiance(irrTexels, irrDirs_.x.data(), irrDirs_.y.data(), irrDirs_.z.data(), d,
+                                 h.hit ? glm::vec3(0.0f) : uniformSky, sk, sk + irrTexels,
+                                 sk + 2 * irrTexels, sk + 3 * irrTexels);
+        }
+        if (hasRadiance) {  // binned by direction: the texel of the octahedral map the ray leaves through
+            float* rad = &f.newRad[(size_t(slot) * radTexels + octTexel(d, radN_)) * 5];
+            for (int c = 0; c < 3; ++c) rad[c] += radiance[c];
+            rad[3] += 1.0f;
+            rad[4] += h.hit ? std::min(h.distance, missDistance_) : missDistance_;
+        }
+        if (hasRadiance)
+            accumulateIrradiance(irrTexels, irrDirs_.x.data(), irrDirs_.y.data(), irrDirs_.z.data(), d, radiance,
+                                 irr, irr + irrTexels, irr + 2 * irrTexels, irr + 3 * irrTexels);
+        const size_t lobe = octTexel(d, depthN_);
+        accumulateDepth(&depthLobeBlocks_[0] + depthLobeStart_[lobe], &depthLobeBlocks_[0] + depthLobeStart_[lobe + 1],
+                        depthDirs_.x.data(), depthDirs_.y.data(), depthDirs_.z.data(), d, distance, dep,
+                        dep + depthTexels, dep + 2 * depthTexels);
+    }
+    if (skySamples) {  // the map's share: its own rays, drawn from its density, blocked by either face
+        float* sk = &f.newSkyMap[size_t(slot) * irrTexels * 4];
+        const uint64_t base = splitmix64(seed_ ^ (uint64_t(probe) * 0x9E3779B97F4A7C15ull) ^ (updateIndex_ << 20));
+        for (int j = 0; j < skySamples; ++j) {
+            const uint64_t h1 = splitmix64(base + uint64_t(j));
+            const EnvironmentLight::Sample es = skyMapSampler_->sample(unitFloat(h1), unitFloat(splitmix64(h1)));
+            if (!(es.pdf > 0.0f)) continue;
+            if (tracer_.intersect(origin, es.direction, 0.0f, kInf).hit) continue;
+            const glm::vec3 L = es.radiance / (es.pdf * float(skySamples));
+            if (!finite3(L)) continue;
+            accumulateIrradiance(irrTexels, irrDirs_.x.data(), irrDirs_.y.data(), irrDirs_.z.data(), es.direction, L,
+                                 sk, sk + irrTexels, sk + 2 * irrTexels, sk + 3 * irrTexels);
+        }
+    }
+    f.inside[slot] = float(back) > insideFraction * float(dirs.size()) ? 1 : 0;
+    f.shadowRays.fetch_add(shadow);
+}
+
+ProbeUpdateStats ProbeVolume::finishUpdate() {
+    ProbeUpdateStats stats;
+    if (!flight_) return stats;
+    Flight& f = *flight_;
+    traceSlots(f);  // this thread helps with what is left
+    for (std::thread& t : f.helpers) t.join();
+    f.helpers.clear();
+    const std::unique_ptr<Flight> done = std::move(flight_);
+    if (f.error) std::rethrow_exception(f.error);
+    const std::vector<int>& batch = f.batch;
+    if (batch.empty()) {
+        ++updateIndex_;
+        stats.milliseconds = msSince(f.start);
+        return stats;
+    }
+    const bool sky = f.sky;
+    const int skySamples = f.skySamples;
+    const float hysteresis = f.hysteresis;
+    const size_t irrTexels = irrDirs_.size(), depthTexels = depthDirs_.size(), radTexels = size_t(radN_) * radN_;
+    const std::vector<float>&newIrr = f.newIrr, &newDepth = f.newDepth, &newSky = f.newSky, &newSkyMap = f.newSkyMap, &newRad = f.newRad;
+    const std::vector<uint8_t>& inside = f.inside;
     // Commit: hysteresis blend into the atlases, borders, dirty rows.
-    const float hysteresis = std::min(std::max(s.probeHysteresis, 0.0f), 0.999f);
     for (size_t slot = 0; slot < batch.size(); ++slot) {
         const int probe = batch[slot];
         if (inside[slot]) {  // the update's rays say it is inside geometry after all
@@ -760,10 +855,10 @@ ProbeUpdateStats ProbeVolume::update(const Settings& s) {
     }
     ++updateIndex_;
     stats.probesUpdated = int(batch.size());
-    stats.probeRays = uint64_t(batch.size()) * dirs.size();
-    stats.shadowRays = shadowRays.load();
-    stats.milliseconds = msSince(start);
-    stats.cpuMilliseconds = processCpuMs() - cpuStart;
+    stats.probeRays = uint64_t(batch.size()) * f.dirs.size();
+    stats.shadowRays = f.shadowRays.load();
+    stats.milliseconds = msSince(f.start);
+    stats.cpuMilliseconds = processCpuMs() - f.cpuStart;
     return stats;
 }
 
@@ -824,6 +919,7 @@ void ProbeVolume::writeBorders(std::vector<float>& atlas, int n, int ch, int pro
 namespace deepgi {
 
 void ProbeVolume::sceneChanged(bool restart) {
+    finishUpdate();  // its rays saw the scene before the change
     tracer_.update(scene_);
     // The probes around each part that moved, or was hidden or shown: its bounds before and after, grown by what
     // placement looks at (a cell diagonal, and the relocation limit).

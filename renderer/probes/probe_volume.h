@@ -115,6 +115,16 @@ public:
     // them (at least one; a probe's rays are capped at probes.rays_per_frame), each with probes.rays_per_probe
     // rays in a direction set rotated at random every update. Lights come from effectiveLights(scene, settings).
     ProbeUpdateStats update(const Settings& settings);
+    // update() in two halves, for a caller with other work meanwhile (the renderer's G-buffer draws): startUpdate()
+    // picks the probes and starts `helpers` threads tracing their rays (background: at the lowest priority, so that
+    // they take only the CPU the caller's other threads leave); finishUpdate() traces what is left on its own
+    // thread, joins them and commits, with the result of update() to the bit. In between the volume's state is
+    // only read, so the const lookups stay safe; resetHistory(), sceneChanged(), setViewBias() and another
+    // startUpdate() finish a pending update first, as if it had run at once.
+    void startUpdate(const Settings& settings, int helpers, bool background);
+    ProbeUpdateStats finishUpdate();  // nothing pending: zeros
+    bool updatePending() const { return flight_ != nullptr; }
+    int threads() const { return threads_; }  // tracing threads of update(), the calling one included
     // Restarts every probe's history (e.g. after the lights moved): the next update of a probe replaces it, and the
     // updates from then on (rotations, round-robin order) are those of a new volume.
     void resetHistory();
@@ -203,6 +213,9 @@ public:
     glm::vec3 radiance(const glm::vec3& x, const glm::vec3& n, const glm::vec3& dir) const;
 
 private:
+    struct Flight;  // an update between startUpdate() and finishUpdate()
+    void traceSlots(Flight& f) const;  // traces the flight's next slots until none is left
+    void traceSlot(Flight& f, int slot) const;
     void place(const Settings& settings);
     // Places the given probes (offset and state) against the tracer's geometry as it is now; returns those whose
     // offset or state changed.
@@ -264,6 +277,7 @@ private:
     bool uploadedOnce_ = false;
     uint64_t placementRays_ = 0;
     double placementMs_ = 0.0;
+    std::unique_ptr<Flight> flight_;  // the pending update, if any
 };
 
 }  // namespace deepgi
