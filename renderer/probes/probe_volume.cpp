@@ -420,10 +420,7 @@ void ProbeVolume::place(const Settings& s) {
     placementRays_ = 0;
     placeProbes(all);
     partRestBounds_.assign(scene_.parts.size(), Aabb{});
-    for (size_t p = 0; p < scene_.parts.size(); ++p)
-        for (const Vertex& v : scene_.parts[p].vertices)
-            if (std::isfinite(v.position.x) && std::isfinite(v.position.y) && std::isfinite(v.position.z))
-                partRestBounds_[p].extend(v.position);
+    for (size_t p = 0; p < scene_.parts.size(); ++p) extendByVertices(partRestBounds_[p], scene_.parts[p]);
     recordPlacedParts();
     placementMs_ = msSince(start);
 }

@@ -89,6 +89,11 @@ struct MeshPart {
     glm::mat4 restWorld{1.0f};      // the node's world matrix the vertices were placed with
 };
 
+// Extends b by a part's vertex positions (as loaded) moved by model, leaving out those that are not finite (possible
+// in a Scene built in code; the loaders skip them: one would make the framing camera, the clip planes and the sun's
+// shadow box infinite). Returns how many were left out. scene_graph.cpp.
+size_t extendByVertices(Aabb& b, const MeshPart& part, const glm::mat4& model = glm::mat4(1.0f));
+
 // A node's local transform, glTF's TRS (a file's matrix is decomposed at load).
 struct Transform {
     glm::vec3 translation{0.0f};
@@ -205,11 +210,7 @@ struct Scene {
     }
     void computeBounds() {
         bounds = Aabb{};
-        // Finite positions only: one Inf/NaN vertex (possible in a Scene built in code; the loader skips them) would
-        // make the framing camera, the clip planes and the sun's shadow box infinite, and the image black.
-        for (const auto& p : parts)
-            for (const auto& v : p.vertices)
-                if (std::isfinite(v.position.x) && std::isfinite(v.position.y) && std::isfinite(v.position.z)) bounds.extend(v.position);
+        for (const auto& p : parts) extendByVertices(bounds, p);
     }
     // ---- The node tree (scene_graph.cpp) ----
     // Recomputes every node's world matrix from the local transforms, then each light's position and direction and

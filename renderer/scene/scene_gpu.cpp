@@ -24,16 +24,8 @@ SceneGpu::SceneGpu(const Scene& scene) : materials_(scene.materials) {
     for (const auto& p : scene.parts)
         if (!p.indices.empty()) byMaterial[p.material].push_back(&p);
     partBounds_.resize(scene.parts.size());
-    for (size_t i = 0; i < scene.parts.size(); ++i) {
-        Aabb& b = partBounds_[i];
-        for (const Vertex& v : scene.parts[i].vertices) {
-            if (!std::isfinite(v.position.x) || !std::isfinite(v.position.y) || !std::isfinite(v.position.z)) {
-                b = Aabb{};
-                break;
-            }
-            b.extend(v.position);
-        }
-    }
+    for (size_t i = 0; i < scene.parts.size(); ++i)
+        if (extendByVertices(partBounds_[i], scene.parts[i]) > 0) partBounds_[i] = Aabb{};
     for (const auto& [mat, parts] : byMaterial) {
         Batch b{mat, uint32_t(indices.size()), 0, 0, {}};
         for (const MeshPart* p : parts) {

@@ -78,14 +78,16 @@ bool Scene::nodeVisible(int node) const {
     return true;
 }
 
-namespace {
-void extendPart(Aabb& b, const MeshPart& p, const glm::mat4& m) {
-    for (const auto& v : p.vertices) {
-        const glm::vec3 q = glm::vec3(m * glm::vec4(v.position, 1.0f));
+size_t extendByVertices(Aabb& b, const MeshPart& part, const glm::mat4& model) {
+    const bool identity = model == glm::mat4(1.0f);  // a part where it was loaded: its positions as they are
+    size_t left = 0;
+    for (const auto& v : part.vertices) {
+        const glm::vec3 q = identity ? v.position : glm::vec3(model * glm::vec4(v.position, 1.0f));
         if (std::isfinite(q.x) && std::isfinite(q.y) && std::isfinite(q.z)) b.extend(q);
+        else ++left;
     }
+    return left;
 }
-}  // namespace
 
 Aabb Scene::nodeBounds(int node) const {
     Aabb b;
@@ -96,7 +98,7 @@ Aabb Scene::nodeBounds(int node) const {
         stack.pop_back();
         const SceneNode& n = nodes[size_t(i)];
         for (int pi : n.parts)
-            if (pi >= 0 && pi < int(parts.size())) extendPart(b, parts[size_t(pi)], partModel(pi));
+            if (pi >= 0 && pi < int(parts.size())) extendByVertices(b, parts[size_t(pi)], partModel(pi));
         for (int c : n.children)
             if (c >= 0 && c < int(nodes.size())) stack.push_back(c);
     }
@@ -106,16 +108,8 @@ Aabb Scene::nodeBounds(int node) const {
 
 Aabb Scene::currentBounds() const {
     Aabb b;
-    for (int i = 0; i < int(parts.size()); ++i) {
-        if (!partVisible(i)) continue;
-        const glm::mat4 m = partModel(i);
-        if (m == glm::mat4(1.0f)) {
-            for (const auto& v : parts[size_t(i)].vertices)
-                if (std::isfinite(v.position.x) && std::isfinite(v.position.y) && std::isfinite(v.position.z)) b.extend(v.position);
-        } else {
-            extendPart(b, parts[size_t(i)], m);
-        }
-    }
+    for (int i = 0; i < int(parts.size()); ++i)
+        if (partVisible(i)) extendByVertices(b, parts[size_t(i)], partModel(i));
     return b;
 }
 
