@@ -53,7 +53,7 @@ RenderJobResult runRenderJob(const RenderJob& job) {
 
     std::map<std::string, std::vector<double>> perPass;
     std::vector<std::string> passOrder;
-    std::vector<double> frameMs, gpuPassesMs;
+    std::vector<double> frameMs, gpuPassesMs, probeCpuMs, probeSpanMs;
     const bool animate = job.animateFps > 0.0;
     if ((job.timeSet || animate) && scene->animations.empty())
         result.warnings.push_back(job.scenePath + ": --time/--animate given, but the scene has no animations");
@@ -72,6 +72,8 @@ RenderJobResult runRenderJob(const RenderJob& job) {
             renderer.sceneChanged(SceneChange::Transforms);
             if (job.cameraFile.empty() && !scene->cameras.empty()) renderer.setCamera(selectCamera(*scene, job.camera));  // an animated camera node
         }
+        const ProbeVolume* volume = renderer.probeVolume();
+        const uint64_t probeUpdatesBefore = volume ? volume->updateCount() : 0;
         const auto start = std::chrono::steady_clock::now();
         renderer.render(job.settings);
         if (result.gpuTimed) glFinish();
@@ -82,6 +84,13 @@ RenderJobResult runRenderJob(const RenderJob& job) {
             writePng8(job.outDir + name, job.width, job.height, 4, renderer.readDisplay());
         }
         if (f < job.warmupFrames) continue;
+        // The probe update's own figures: with probes.overlap its rays are traced beside the G-buffer, so its pass
+        // time shows only what was left; these say what the rays cost (frames that updated the probes only).
+        volume = renderer.probeVolume();
+        if (volume && volume->updateCount() != probeUpdatesBefore && volume->lastUpdate().probesUpdated > 0) {
+            probeCpuMs.push_back(volume->lastUpdate().cpuMilliseconds);
+            probeSpanMs.push_back(volume->lastUpdate().milliseconds);
+        }
         double total = 0.0;
         for (const auto& t : renderer.timings()) {
             if (!perPass.count(t.name)) passOrder.push_back(t.name);
@@ -129,7 +138,14 @@ RenderJobResult runRenderJob(const RenderJob& job) {
     timings["frames"] = job.frames;
     timings["warmup_frames"] = job.warmupFrames;
     timings["frames_ms"] = frameMs;  // each timed frame, in order (the medians hide a transient such as the probes')
-    if (result.hasProbes) timings["probes_settled"] = result.probesSettled;
+    if (result.hasProbes) {
+        timings["probes_settled"] = result.probesSettled;
+        // Medians over the timed frames that updated the probes (0 when none did): CPU time of the threads that
+        // traced them, and wall time from the update's start to its commit (beside the draws with probes.overlap).
+        timings["probe_update_frames"] = probeCpuMs.size();
+        timings["probe_update_cpu_ms"] = probeCpuMs.empty() ? 0.0 : median(probeCpuMs);
+        timings["probe_update_span_ms"] = probeSpanMs.empty() ? 0.0 : median(probeSpanMs);
+    }
     timings["gl_renderer"] = result.glRenderer;
     timings["size"] = {job.width, job.height};
     nlohmann::json passes = nlohmann::json::array();

@@ -80,6 +80,12 @@ TEST(Cli, RenderWarmupFramesAreRenderedButNotTimed) {
     nlohmann::json warm_t = nlohmann::json::parse(std::ifstream(dir / "warm" / "timings.json"));
     EXPECT_EQ(early_t["probes_settled"], false);
     EXPECT_EQ(warm_t["probes_settled"], true);
+    // The probe update's own cost: the frame that updated them reports it, settled frames none.
+    EXPECT_EQ(early_t["probe_update_frames"], 1);
+    EXPECT_GT(early_t["probe_update_cpu_ms"].get<double>(), 0.0);
+    EXPECT_GT(early_t["probe_update_span_ms"].get<double>(), 0.0);
+    EXPECT_EQ(warm_t["probe_update_frames"], 0);
+    EXPECT_EQ(warm_t["probe_update_cpu_ms"].get<double>(), 0.0);
     EXPECT_EQ(warm_t["frames"], 2);
     EXPECT_EQ(warm_t["warmup_frames"], 3);
     ASSERT_EQ(warm_t["frames_ms"].size(), 2u);

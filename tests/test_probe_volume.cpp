@@ -486,6 +486,8 @@ TEST(ProbeVolume, UpdateInTwoHalvesIsTheUpdateAtOnce) {
         const ProbeUpdateStats st = halves.finishUpdate();
         EXPECT_FALSE(halves.updatePending());
         EXPECT_EQ(st.probesUpdated, 15);
+        EXPECT_GT(st.cpuMilliseconds, 0.0) << "the tracing threads' CPU time";
+        EXPECT_EQ(halves.lastUpdate().probeRays, st.probeRays);
     }
     EXPECT_EQ(halves.finishUpdate().probesUpdated, 0) << "nothing pending";
     // Finished by the next start, and by a restart of the history: as if each had run at once.

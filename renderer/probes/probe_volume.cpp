@@ -3,6 +3,7 @@
 // upload is apart (probe_volume_textures.cpp).
 #include "renderer/probes/probe_volume.h"
 
+#include "renderer/core/util.h"
 #include "renderer/probes/octahedral.h"
 #include "renderer/scene/environment_map.h"
 #include "renderer/scene/lighting.h"
@@ -21,7 +22,6 @@
 #include <thread>
 
 #include <sys/resource.h>
-#include <time.h>
 #include <unistd.h>
 
 namespace deepgi {
@@ -100,11 +100,6 @@ double msSince(std::chrono::steady_clock::time_point start) {
     return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
 }
 
-double processCpuMs() {
-    timespec t{};
-    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
-    return double(t.tv_sec) * 1e3 + double(t.tv_nsec) * 1e-6;
-}
 
 // Eight floats as one GCC/Clang vector (two SSE or one AVX register): the loops below are written with it because
 // -O2 left them scalar. The operations are the scalar ones in the same order, so the sums are the same bits.
@@ -370,7 +365,7 @@ ProbeVolume::ProbeVolume(const Scene& scene, const Settings& s, uint64_t seed, i
 // startUpdate() to the commit in finishUpdate().
 struct ProbeVolume::Flight {
     std::chrono::steady_clock::time_point start;
-    double cpuStart = 0.0;
+    std::atomic<int64_t> cpuMicroseconds{0};  // CPU time of the threads that picked, traced and committed
     float feedback = 0.0f, hysteresis = 0.0f, insideFraction = 0.0f;
     std::vector<int> batch;  // the probes, one per slot
     std::vector<Light> lights;
@@ -606,7 +601,7 @@ void ProbeVolume::startUpdate(const Settings& s, int helpers, bool background) {
     auto flight = std::make_unique<Flight>();
     Flight& f = *flight;
     f.start = std::chrono::steady_clock::now();
-    f.cpuStart = processCpuMs();
+    const double cpuStart = threadCpuMs();
     f.hysteresis = std::min(std::max(s.probeHysteresis, 0.0f), 0.999f);
     f.feedback = 1.0f - std::clamp(s.damping, 0.0f, 1.0f);
     const int count = grid_.count();
@@ -623,6 +618,11 @@ void ProbeVolume::startUpdate(const Settings& s, int helpers, bool background) {
         flight_ = std::move(flight);
         return;
     }
+    struct CountCpu {  // this thread's share, however startUpdate() ends
+        Flight& f;
+        double start;
+        ~CountCpu() { f.cpuMicroseconds.fetch_add(int64_t((threadCpuMs() - start) * 1e3)); }
+    } countCpu{f, cpuStart};
     f.lights = effectiveLights(scene_, s);
     // The sky: allocated while the environment lights, freed when it stops.
     if (!environmentOn(scene_, s)) sky_.clear();  // as the pipeline's config.sky (an all-black map: zeros)
@@ -669,6 +669,12 @@ void ProbeVolume::startUpdate(const Settings& s, int helpers, bool background) {
 }
 
 void ProbeVolume::traceSlots(Flight& f) const {
+    const double cpuStart = threadCpuMs();
+    struct CountCpu {
+        Flight& f;
+        double start;
+        ~CountCpu() { f.cpuMicroseconds.fetch_add(int64_t((threadCpuMs() - start) * 1e3)); }
+    } countCpu{f, cpuStart};
     try {
         for (int slot; (slot = f.next.fetch_add(1)) < int(f.batch.size());) traceSlot(f, slot);
     } catch (...) {
@@ -757,8 +763,10 @@ ProbeUpdateStats ProbeVolume::finishUpdate() {
     if (batch.empty()) {
         ++updateIndex_;
         stats.milliseconds = msSince(f.start);
+        lastUpdate_ = stats;
         return stats;
     }
+    const double cpuStart = threadCpuMs();
     const bool sky = f.sky;
     const int skySamples = f.skySamples;
     const float hysteresis = f.hysteresis;
@@ -855,7 +863,8 @@ ProbeUpdateStats ProbeVolume::finishUpdate() {
     stats.probeRays = uint64_t(batch.size()) * f.dirs.size();
     stats.shadowRays = f.shadowRays.load();
     stats.milliseconds = msSince(f.start);
-    stats.cpuMilliseconds = processCpuMs() - f.cpuStart;
+    stats.cpuMilliseconds = double(f.cpuMicroseconds.load()) * 1e-3 + (threadCpuMs() - cpuStart);
+    lastUpdate_ = stats;
     return stats;
 }
 

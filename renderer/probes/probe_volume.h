@@ -73,8 +73,8 @@ struct ProbeUpdateStats {
     int probesUpdated = 0;
     uint64_t probeRays = 0;   // rays cast from probes (bounded by probes.rays_per_frame)
     uint64_t shadowRays = 0;  // shadow rays cast from their hits towards the lights
-    double milliseconds = 0.0;     // wall time
-    double cpuMilliseconds = 0.0;  // CPU time of the process during the update (all its threads)
+    double milliseconds = 0.0;     // wall time from its start to its commit (beside other work when started apart)
+    double cpuMilliseconds = 0.0;  // CPU time of the threads that picked, traced and committed the probes
 };
 
 // std140 mirror of the GLSL block ProbeVolumeUniforms (shaders/probe_volume.glsl).
@@ -124,6 +124,7 @@ public:
     void startUpdate(const Settings& settings, int helpers, bool background);
     ProbeUpdateStats finishUpdate();  // nothing pending: zeros
     bool updatePending() const { return flight_ != nullptr; }
+    const ProbeUpdateStats& lastUpdate() const { return lastUpdate_; }  // the last finished update's figures
     int threads() const { return threads_; }  // tracing threads of update(), the calling one included
     // Restarts every probe's history (e.g. after the lights moved): the next update of a probe replaces it, and the
     // updates from then on (rotations, round-robin order) are those of a new volume.
@@ -278,6 +279,7 @@ private:
     uint64_t placementRays_ = 0;
     double placementMs_ = 0.0;
     std::unique_ptr<Flight> flight_;  // the pending update, if any
+    ProbeUpdateStats lastUpdate_;
 };
 
 }  // namespace deepgi
