@@ -68,8 +68,9 @@ void ProbeUpdatePass::begin(FrameContext& ctx) {
 void ProbeUpdatePass::execute(FrameContext& ctx) {
     ProbeVolume& v = *ctx.probes;
     if (update_) {
-        if (v.updatePending()) v.finishUpdate();
-        else v.update(ctx.settings);  // probes.overlap off: all of it here
+        const ProbeSettings& ps = ctx.settings;
+        if (ps.probeOverlap) v.finishUpdate();  // the one begin() started
+        else v.update(ctx.settings);            // all of it here (finishing one a failed frame left first)
     }
     if (upload_) {
         if (ctx.config.sky) v.uploadSkyTexture(ctx.texture("Probe Sky Irradiance"), allTexels_);
