@@ -366,6 +366,11 @@ ProbeVolume::ProbeVolume(const Scene& scene, const Settings& s, uint64_t seed, i
 struct ProbeVolume::Flight {
     std::chrono::steady_clock::time_point start;
     std::atomic<int64_t> cpuMicroseconds{0};  // CPU time of the threads that picked, traced and committed
+    struct CpuShare {  // adds a thread's CPU time from `start` to the count when it goes out of scope
+        Flight& f;
+        double start;
+        ~CpuShare() { f.cpuMicroseconds.fetch_add(int64_t((threadCpuMs() - start) * 1e3)); }
+    };
     float feedback = 0.0f, hysteresis = 0.0f, insideFraction = 0.0f;
     std::vector<int> batch;  // the probes, one per slot
     std::vector<Light> lights;
@@ -618,11 +623,7 @@ void ProbeVolume::startUpdate(const Settings& s, int helpers, bool background) {
         flight_ = std::move(flight);
         return;
     }
-    struct CountCpu {  // this thread's share, however startUpdate() ends
-        Flight& f;
-        double start;
-        ~CountCpu() { f.cpuMicroseconds.fetch_add(int64_t((threadCpuMs() - start) * 1e3)); }
-    } countCpu{f, cpuStart};
+    const Flight::CpuShare share{f, cpuStart};  // this thread's, however startUpdate() ends
     f.lights = effectiveLights(scene_, s);
     // The sky: allocated while the environment lights, freed when it stops.
     if (!environmentOn(scene_, s)) sky_.clear();  // as the pipeline's config.sky (an all-black map: zeros)
@@ -669,12 +670,7 @@ void ProbeVolume::startUpdate(const Settings& s, int helpers, bool background) {
 }
 
 void ProbeVolume::traceSlots(Flight& f) const {
-    const double cpuStart = threadCpuMs();
-    struct CountCpu {
-        Flight& f;
-        double start;
-        ~CountCpu() { f.cpuMicroseconds.fetch_add(int64_t((threadCpuMs() - start) * 1e3)); }
-    } countCpu{f, cpuStart};
+    const Flight::CpuShare share{f, threadCpuMs()};
     try {
         for (int slot; (slot = f.next.fetch_add(1)) < int(f.batch.size());) traceSlot(f, slot);
     } catch (...) {
