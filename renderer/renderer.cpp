@@ -471,6 +471,13 @@ std::vector<PassGraphNode> Renderer::graph() const {
     return out;
 }
 
+void Renderer::beginPass(size_t i, FrameContext& ctx) {
+    ctx.pass = passes_[i].get();  // its table, as in execute(): the textures it may name
+    ctx.table = &stages_[i].table;
+    ctx.bindings = &stages_[i].bindings;
+    passes_[i]->begin(ctx);
+}
+
 void Renderer::runPass(size_t i, FrameContext& ctx) {
     const Stage& st = stages_[i];
     for (const auto& b : st.bindings) glBindTextureUnit(GLuint(b.unit), b.id);
@@ -509,7 +516,7 @@ void Renderer::render(const Settings& user) {
     for (size_t index : order_) {
         const auto b0 = clock::now();
         const double c0 = cpu ? threadCpuMs() : 0.0;
-        passes_[index]->begin(ctx);
+        beginPass(index, ctx);
         beginMs[index] = cpu ? threadCpuMs() - c0 : std::chrono::duration<double, std::milli>(clock::now() - b0).count();
     }
     size_t q = 0;
@@ -598,7 +605,7 @@ void Renderer::executePass(const std::string& passName, const Settings& user) {
     FrameContext ctx = makeContext(s);
     for (size_t i : order_)
         if (passName == passes_[i]->name()) {
-            passes_[i]->begin(ctx);  // alone, its begin() has nothing to run beside
+            beginPass(i, ctx);  // alone, its begin() has nothing to run beside
             runPass(i, ctx);
             glBindFramebuffer(GL_FRAMEBUFFER, 0);
             return;

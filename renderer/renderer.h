@@ -151,6 +151,7 @@ private:
     glm::mat4 uploadFrameUniforms(const Settings& s);  // returns the frame's view-projection
     FrameContext makeContext(const Settings& s);
     void buildPipeline();
+    void beginPass(size_t index, FrameContext& ctx);  // the pass's begin() with its table in ctx
     void runPass(size_t index, FrameContext& ctx);
     // The slow-shader watchdog: the programs on trial that the pass just used pass if its work finishes within
     // limitMs of startMs (steady-clock ms), else they get their previous programs back. Returns false on a failure.

@@ -2,6 +2,7 @@
 // image, for each punctual light type, on a floor with a box casting a shadow.
 #include "gl_fixture.h"
 
+#include "renderer/passes/shadow_map_pass.h"
 #include "renderer/reference/path_tracer.h"
 #include "renderer/scene/lighting.h"
 
@@ -136,6 +137,56 @@ TEST_F(GLTest, ShadowTexturesOnlyForLightTypesPresent) {
     r.prepare(Settings{});
     EXPECT_FALSE(r.textures().has("Shadow Cubes"));
     EXPECT_TRUE(r.textures().has("Shadow Maps"));
+}
+
+// The shadow maps are drawn once for a static scene and kept through a new frame size (the viewer's dynamic
+// resolution changes it whenever the camera starts or stops: Crytek Sponza's maps cost 58 ms a time), and drawn
+// again when they are allocated anew (another map size). Each frame's image equals a fresh renderer's at that size.
+TEST_F(GLTest, ShadowMapsAreKeptThroughANewFrameSize) {
+    Light sun;
+    sun.type = LightType::Directional;
+    sun.direction = glm::normalize(glm::vec3(0.6f, -1.0f, -0.3f));
+    sun.intensity = 1.5f;
+    Light point;
+    point.type = LightType::Point;
+    point.position = glm::vec3(1.2f, 2.0f, -0.8f);
+    point.intensity = 6.0f;
+    auto scene = shadowScene(sun);
+    scene->lights.push_back(point);
+    Settings s;
+    s.indirect = false;
+    s.shadowMapSize = 256;
+    auto fresh = [&](int w, int h, const Settings& st) {
+        Renderer f;
+        f.setScene(scene);
+        f.resize(w, h);
+        f.setCamera(selectCamera(*scene, "cam"));
+        f.render(st);
+        return f.readFinalRadiance();
+    };
+    Renderer r;
+    r.setScene(scene);
+    r.resize(64, 48);
+    r.setCamera(selectCamera(*scene, "cam"));
+    const ShadowMapPass* pass = nullptr;
+    for (const auto& p : r.passes())
+        if (auto* sp = dynamic_cast<const ShadowMapPass*>(p.get())) pass = sp;
+    ASSERT_NE(pass, nullptr);
+    r.render(s);
+    r.render(s);
+    EXPECT_EQ(pass->renders(), 1u);
+    r.resize(48, 36);
+    r.render(s);
+    EXPECT_EQ(pass->renders(), 1u) << "a new frame size keeps the maps";
+    FloatImage kept = r.readFinalRadiance(), expected = fresh(48, 36, s);
+    ASSERT_EQ(kept.pixels.size(), expected.pixels.size());
+    EXPECT_EQ(kept.pixels, expected.pixels);
+    s.shadowMapSize = 128;
+    r.render(s);
+    EXPECT_EQ(pass->renders(), 2u) << "maps allocated anew are drawn again";
+    kept = r.readFinalRadiance();
+    expected = fresh(48, 36, s);
+    EXPECT_EQ(kept.pixels, expected.pixels);
 }
 
 // Several lights add up: the direct light of the first n of six lights (sun, points, spots) is the sum of each

@@ -95,6 +95,7 @@ void TextureRegistry::reconcile(const std::vector<TextureDecl>& decls, int scree
         }
         ++generation_;
         Entry e;
+        e.serial = generation_;
         e.decl = d;
         e.width = w;
         e.height = h;

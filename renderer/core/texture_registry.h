@@ -67,6 +67,9 @@ public:
         TextureDecl decl;
         gl::TextureHandle texture;
         int width = 0, height = 0;  // of level 0
+        // Which allocation this is: no other texture this registry creates gets the same number, so a pass that
+        // fills a texture once and keeps it (shadow maps, probe atlases) knows whether it still holds its content.
+        uint64_t serial = 0;
     };
 
     // Replaces the declaration set: textures whose declaration is unchanged and whose size still fits are kept
@@ -88,7 +91,8 @@ public:
     // never a driver that tries (llvmpipe keeps textures in system memory and would take it all).
     void setMemoryBudget(uint64_t bytes) { budget_ = bytes; }
     uint64_t memoryBudget() const;
-    // Changes whenever a texture is created or released (framebuffers that attach textures must be rebuilt).
+    // Changes whenever a texture is created or released (framebuffers that attach textures must be rebuilt); a
+    // texture kept through a reconcile() keeps its Entry::serial.
     uint64_t generation() const { return generation_; }
 
 private:

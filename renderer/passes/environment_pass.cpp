@@ -21,7 +21,7 @@ void EnvironmentPass::table(const PipelineConfig& c, PassTable& t) const {
 void EnvironmentPass::execute(FrameContext& ctx) {
     const EnvironmentMap* map = ctx.environment;
     if (!map) return;
-    if (map == uploadedMap_ && uploadedGeneration_ == ctx.textures.generation()) return;
+    if (map == uploadedMap_ && uploadedTextures_ == ctx.writtenTexturesKey()) return;
     const GLuint tex = ctx.texture("Environment Map");
     const auto& e = ctx.entry("Environment Map");
     if (e.width != map->width || e.height != map->height) return;  // the config follows the map on the next frame
@@ -44,7 +44,7 @@ void EnvironmentPass::execute(FrameContext& ctx) {
     glTextureParameteri(tex, GL_TEXTURE_WRAP_S, GL_REPEAT);
     glTextureParameteri(tex, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
     uploadedMap_ = map;
-    uploadedGeneration_ = ctx.textures.generation();
+    uploadedTextures_ = ctx.writtenTexturesKey();
 }
 
 glm::vec4 environmentUniform(const FrameContext& ctx) {

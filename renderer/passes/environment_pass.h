@@ -16,7 +16,7 @@ public:
 
 private:
     const EnvironmentMap* uploadedMap_ = nullptr;
-    uint64_t uploadedGeneration_ = 0;
+    uint64_t uploadedTextures_ = 0;  // FrameContext::writtenTexturesKey() of the last upload
 };
 
 // What shaders/environment.glsl's uniforms hold for this frame: uEnvironment = (sky radiance x intensity,

@@ -1,11 +1,11 @@
 #include "renderer/passes/pass.h"
 
+#include "renderer/core/util.h"
+
 #include "renderer/scene/lighting.h"
 
 #include <algorithm>
 #include <stdexcept>
-
-#include <algorithm>
 
 namespace deepgi {
 
@@ -98,6 +98,17 @@ const TextureRegistry::Entry& FrameContext::entry(const std::string& name) const
         throw std::runtime_error("pass '" + passName(*this) + "' uses texture '" + name +
                                  "', which its table does not declare (add it to " + passName(*this) + "::table)");
     return textures.entry(name);
+}
+
+uint64_t FrameContext::writtenTexturesKey() const {
+    uint64_t key = kFnvOffset;
+    if (table)
+        for (const Channel& c : table->channels())
+            if (c.access == Access::Write) {
+                const uint64_t serial = textures.entry(c.texture).serial;
+                key = fnv1a(key, &serial, sizeof(serial));
+            }
+    return key;
 }
 
 void FrameContext::bindSamplers(const gl::Program& program,

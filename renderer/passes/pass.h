@@ -201,6 +201,10 @@ struct FrameContext {
     // A texture of the running pass's table; any other name is an error naming the pass (an undeclared use).
     GLuint texture(const std::string& name) const;
     const TextureRegistry::Entry& entry(const std::string& name) const;
+    // Changes when a texture the running pass writes (its table's Write channels) is allocated anew, and only
+    // then: a pass that fills its textures once and keeps them (shadow maps, probe atlases, the environment map)
+    // compares it with the value of its last fill. A new frame size keeps it where those textures keep their size.
+    uint64_t writtenTexturesKey() const;
     // Sets every sampler the program uses to the unit of its table entry; `overrides` point a sampler at another
     // texture of the table for the next draw ({"uSource", "Radiosity Scratch"}). A sampler the table does not
     // declare is an error (an undeclared read).

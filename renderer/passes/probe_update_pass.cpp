@@ -56,7 +56,7 @@ void ProbeUpdatePass::begin(FrameContext& ctx) {
         lightKey_ = key;
     }
     const bool settled = v.settled(ctx.settings);
-    allTexels_ = uploadedGeneration_ != ctx.textures.generation() || uploadedVolume_ != &v;
+    allTexels_ = uploadedTextures_ != ctx.writtenTexturesKey() || uploadedVolume_ != &v;
     upload_ = !settled || allTexels_;  // settled and uploaded: converged under these lights, the textures hold
     // New textures (a resize, a pipeline change) only need the settled state uploaded again: another update would
     // make the probes, and so the image, depend on how many times the textures were reallocated.
@@ -76,7 +76,7 @@ void ProbeUpdatePass::execute(FrameContext& ctx) {
         if (ctx.config.sky) v.uploadSkyTexture(ctx.texture("Probe Sky Irradiance"), allTexels_);
         v.uploadTextures(ctx.texture("Probe Irradiance"), ctx.texture("Probe Depth"), ctx.texture("Probe Data"),
                          ctx.config.probeDirectionalFill ? ctx.texture("Probe Radiance") : 0, allTexels_);
-        uploadedGeneration_ = ctx.textures.generation();
+        uploadedTextures_ = ctx.writtenTexturesKey();
         uploadedVolume_ = &v;
     }
     v.uploadUniforms(ctx.probeUniforms);  // 80 bytes, every frame: the view bias may change on a settled volume

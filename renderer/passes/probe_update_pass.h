@@ -20,7 +20,7 @@ private:
     bool update_ = false;              // begin() found the volume not settled: this frame updates it
     bool upload_ = false;              // and this frame uploads (a settled volume's textures are uploaded once)
     bool allTexels_ = false;           // and that the whole atlas goes (new textures or volume)
-    uint64_t uploadedGeneration_ = 0;  // registry generation of the last full upload
+    uint64_t uploadedTextures_ = 0;    // FrameContext::writtenTexturesKey() of the last full upload
     uint64_t lightKey_ = 0;            // what the probes' light follows: the lights (FrameContext::shadowKey) and the bounce damping
     const ProbeVolume* uploadedVolume_ = nullptr;
 };

@@ -18,9 +18,12 @@ void ShadowMapPass::table(const PipelineConfig& c, PassTable& t) const {
 }
 
 void ShadowMapPass::execute(FrameContext& ctx) {
-    if (renderedKey_ == ctx.shadowKey && renderedGeneration_ == ctx.textures.generation()) return;
+    // Kept until the lights or the scene change or the maps are allocated anew (a new map size or light count);
+    // a new frame size (the viewer's dynamic resolution) keeps them.
+    if (renderedKey_ == ctx.shadowKey && renderedTextures_ == ctx.writtenTexturesKey()) return;
     renderedKey_ = ctx.shadowKey;
-    renderedGeneration_ = ctx.textures.generation();
+    renderedTextures_ = ctx.writtenTexturesKey();
+    ++renders_;
     for (const char* texName : {"Shadow Maps", "Shadow Cubes"}) {
         if (!ctx.table->uses(texName)) continue;
         GLuint t = ctx.texture(texName);
