@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <string>
+#include <vector>
 
 namespace deepgi {
 
@@ -26,6 +27,16 @@ int resolveMode(ViewMode m, Visualize vis) {
     }
 }
 
+// Normalised and integer formats hold neither NaN, infinities nor negative values.
+bool mayHoldNonFinite(GLenum format) {
+    switch (format) {
+        case GL_RGBA8: case GL_SRGB8_ALPHA8: case GL_RGB8: case GL_SRGB8: case GL_RG8: case GL_R8: case GL_RGB10_A2:
+        case GL_RGBA16: case GL_RG16: case GL_R16: case GL_DEPTH_COMPONENT16: case GL_DEPTH_COMPONENT24:
+        case GL_R32UI: case GL_RG32UI: case GL_RGBA32UI: case GL_R8UI: case GL_R16UI: return false;
+        default: return true;
+    }
+}
+
 std::string at(const char* name, int i) { return std::string(name) + "[" + std::to_string(i) + "]"; }
 
 // Units of the view's own samplers (it is not a pipeline pass, so it has no table): 2D and array view of A, of B.
@@ -35,12 +46,12 @@ constexpr int kUnit2D[2] = {0, 2}, kUnitArray[2] = {1, 3};
 
 struct BufferViewPass::Program : gl::Program {
     struct Source {
+        // A variant leaves out what its sampler and mapping do not read (B's, without a split).
         Source(gl::Program& p, int i)
-            : isArray(p, at("uIsArray", i).c_str()), layer(p, at("uLayer", i).c_str()), faces(p, at("uFaces", i).c_str()),
-              level(p, at("uLevel", i).c_str()), mode(p, at("uMode", i).c_str()), size(p, at("uSize", i).c_str()) {}
-        gl::Uniform<bool> isArray;
-        gl::Uniform<int> layer, faces, level, mode;
-        gl::Uniform<glm::ivec2> size;
+            : layer(p, at("uLayer", i).c_str()), faces(p, at("uFaces", i).c_str()), level(p, at("uLevel", i).c_str()),
+              size(p, at("uSize", i).c_str()) {}
+        gl::OptionalUniform<int> layer, faces, level;
+        gl::OptionalUniform<glm::ivec2> size;
     };
     Program(GLuint id, std::string name) : gl::Program(id, std::move(name)) {
         setSampler("uTex2DA", kUnit2D[0]);
@@ -51,20 +62,15 @@ struct BufferViewPass::Program : gl::Program {
         setSampler("uTexArrUB", kUnitUintArray[1]);
     }
     Source source[2]{{*this, 0}, {*this, 1}};
-    gl::Uniform<bool> hasB{*this, "uHasB"};
-    gl::Uniform<int> channel{*this, "uChannel"};
-    gl::Uniform<float> exposure{*this, "uExposure"};
-    gl::Uniform<glm::vec2> range{*this, "uRange"};
-    gl::Uniform<bool> useRange{*this, "uUseRange"};
-    gl::Uniform<bool> highlight{*this, "uHighlight"};
+    gl::OptionalUniform<float> exposure{*this, "uExposure"};      // radiance
+    gl::OptionalUniform<glm::vec2> range{*this, "uRange"};        // USE_RANGE
     gl::Uniform<glm::vec2> origin{*this, "uOrigin"};
     gl::Uniform<float> texelsPerPixel{*this, "uTexelsPerPixel"};
-    gl::Uniform<bool> grid{*this, "uGrid"};
     gl::Uniform<glm::vec4> background{*this, "uBackground"};
-    gl::Uniform<glm::vec2> clip{*this, "uClip"};
-    gl::Uniform<bool> persp{*this, "uPersp"};
-    gl::Uniform<float> splitX{*this, "uSplitX"};
-    gl::Uniform<glm::vec2> cropA{*this, "uCropA"};
+    gl::OptionalUniform<glm::vec2> clip{*this, "uClip"};         // depth
+    gl::OptionalUniform<bool> persp{*this, "uPersp"};
+    gl::OptionalUniform<float> splitX{*this, "uSplitX"};         // the split
+    gl::OptionalUniform<glm::vec2> cropA{*this, "uCropA"};
 };
 
 int BufferSource::levelWidth() const { return std::max(1, width >> level) * (target == GL_TEXTURE_CUBE_MAP_ARRAY ? 6 : 1); }
@@ -125,9 +131,24 @@ void BufferViewPass::draw(gl::ShaderLibrary& shaders, const BufferSource& a, con
         outW_ = outW;
         outH_ = outH;
     }
-    Program& prog = program_->get(shaders, {"fullscreen.vert", "", "buffer_view.frag", "", {}});
     const bool hasB = b && b->valid();
     const BufferSource* srcs[2] = {&a, hasB ? b : &a};
+    // The variant: each side's sampler kind and mapping (buffer_view.frag).
+    std::vector<std::string> defines;
+    for (int i = 0; i < (hasB ? 2 : 1); ++i) {
+        const BufferSource& s = *srcs[i];
+        const int kind = s.target == GL_TEXTURE_2D ? 0 : s.format == GL_R32UI ? 2 : 1;
+        const std::string side = i == 0 ? "A " : "B ";
+        defines.push_back("SOURCE_" + side + std::to_string(kind));
+        defines.push_back("MODE_" + side + std::to_string(resolveMode(p.mode, s.vis)));
+    }
+    if (hasB) defines.push_back("HAS_B");
+    if (p.channel != ViewChannel::RGB) defines.push_back("CHANNEL " + std::to_string(int(p.channel)));
+    if (p.useRange) defines.push_back("USE_RANGE");
+    // Only a float texel can be NaN, infinite or negative: the highlight tests nothing in an RGBA8 or integer one.
+    if (p.highlight && (mayHoldNonFinite(a.format) || (hasB && mayHoldNonFinite(b->format)))) defines.push_back("HIGHLIGHT");
+    if (p.grid && std::max(p.texelsPerPixel, 1e-6f) <= 1.0f / 8.0f) defines.push_back("GRID");
+    Program& prog = program_->get(shaders, {"fullscreen.vert", "", "buffer_view.frag", "", defines});
     for (int i = 0; i < 2; ++i) {
         const BufferSource& s = *srcs[i];
         const bool array = s.target != GL_TEXTURE_2D;
@@ -137,25 +158,18 @@ void BufferViewPass::draw(gl::ShaderLibrary& shaders, const BufferSource& a, con
         glBindTextureUnit(GLuint(kUnitArray[i]), array && !uintArray ? tex : 0);
         glBindTextureUnit(GLuint(kUnitUintArray[i]), uintArray ? tex : 0);
         const Program::Source& u = prog.source[i];
-        u.isArray.set(array);
         u.layer.set(s.target == GL_TEXTURE_CUBE_MAP_ARRAY ? s.layer * 6 : s.layer);
         u.faces.set(s.target == GL_TEXTURE_CUBE_MAP_ARRAY ? 6 : 1);
         u.level.set(s.level);
-        u.mode.set(resolveMode(p.mode, s.vis));
         u.size.set(glm::ivec2(std::max(1, s.width >> s.level), std::max(1, s.height >> s.level)));
     }
     // Depth textures may carry a compare mode (shadow maps): a sampler object without it makes texelFetch defined.
     for (GLuint u = 0; u < 6; ++u) glBindSampler(u, sampler_.id());
 
-    prog.hasB.set(hasB);
-    prog.channel.set(int(p.channel));
     prog.exposure.set(std::exp2(p.exposureEV));
     prog.range.set(glm::vec2(p.rangeMin, p.rangeMax));
-    prog.useRange.set(p.useRange);
-    prog.highlight.set(p.highlight);
     prog.origin.set(p.origin);
     prog.texelsPerPixel.set(std::max(p.texelsPerPixel, 1e-6f));
-    prog.grid.set(p.grid);
     prog.background.set(p.background);
     prog.clip.set(glm::vec2(p.znear, p.zfar));
     prog.persp.set(p.perspective);
