@@ -234,6 +234,27 @@ TEST_F(Viewer, SlowShaderAfterHotReloadIsReportedAndReverted) {
     EXPECT_GT(fractionNear(after, 150.0f / 255.0f, 20.0f / 255.0f, 20.0f / 255.0f, 0.08f, bottom), 0.3);
 }
 
+// The viewport shows the frame itself: a still view rendered at the viewport's size is the capture's final.png pixel
+// for pixel below the info line and above the sun's icon (the UI draws the renderer's Final Display, with no view
+// pass copying it in between: 4 ms a frame at the default window).
+TEST_F(Viewer, ViewportShowsTheFramePixelForPixel) {
+    ViewerRun r = view(std::string(kSetup) + "wait 3\ncapture\nwait 1\nscreenshot win.png\n", "--screenshots '" + path("shots") + "'");
+    ASSERT_EQ(r.rc, 0) << r.log;
+    fs::path folder;
+    for (const auto& d : fs::directory_iterator(path("shots"))) folder = d.path();
+    ASSERT_FALSE(folder.empty());
+    const deepgi::FloatImage frame = deepgi::readImage((folder / "final.png").string()), win = shot("win.png");
+    ASSERT_EQ(frame.width, kW) << "the sidebar is hidden: the viewport is the window's width";
+    ASSERT_LT(frame.height, kH);
+    ASSERT_GT(frame.height, 100);
+    const int top = kH - frame.height;  // the viewport fills the window below the header
+    size_t differ = 0, n = 0;
+    for (int y = 30; y < frame.height - 80; ++y)
+        for (int x = 0; x < frame.width; ++x)
+            for (int c = 0; c < 3; ++c, ++n) differ += frame.at(x, y, c) != win.at(x, top + y, c);
+    EXPECT_EQ(differ, 0u) << "of " << n;
+}
+
 TEST_F(Viewer, F12WritesAScreenshotFolder) {
     ViewerRun r = view(std::string(kSetup) + "capture\nwait 1\n", "--screenshots '" + path("shots") + "'");
     ASSERT_EQ(r.rc, 0) << r.log;

@@ -127,6 +127,9 @@ void BufferViewPass::draw(gl::ShaderLibrary& shaders, const BufferSource& a, con
         glTextureStorage2D(out_.id(), 1, GL_RGBA8, outW, outH);
         glTextureParameteri(out_.id(), GL_TEXTURE_MIN_FILTER, GL_NEAREST);
         glTextureParameteri(out_.id(), GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+        // The viewer magnifies it bilinearly: its edges must not blend with the opposite ones (GL_REPEAT).
+        glTextureParameteri(out_.id(), GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+        glTextureParameteri(out_.id(), GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
         glNamedFramebufferTexture(fbo_.id(), GL_COLOR_ATTACHMENT0, out_.id(), 0);
         outW_ = outW;
         outH_ = outH;
