@@ -55,7 +55,7 @@ protected:
         glGetTextureImage(view_->texture(), 0, GL_RGBA, GL_UNSIGNED_BYTE, GLsizei(o.px.size()), o.px.data());
         return o;
     }
-    // A 4x1 2D texture of the given float texels (RGBA each).
+    // A w x 1 2D texture of the given float texels (RGBA each).
     BufferSource floats(const std::vector<glm::vec4>& texels, GLenum format = GL_RGBA32F, Visualize vis = Visualize::Radiance) {
         textures_.push_back(gl::createTexture(GL_TEXTURE_2D, "buffer view test"));
         const GLuint t = textures_.back().id();
@@ -65,6 +65,21 @@ protected:
         s.texture = t;
         s.format = format;
         s.width = int(texels.size());
+        s.height = 1;
+        s.vis = vis;
+        return s;
+    }
+    // A w x 1 array texture of `layers` layers, filled from `data` (pixel format and type as glTextureSubImage3D's).
+    BufferSource array(GLenum format, int w, int layers, GLenum pixelFormat, GLenum type, const void* data, Visualize vis) {
+        textures_.push_back(gl::createTexture(GL_TEXTURE_2D_ARRAY, "buffer view test array"));
+        const GLuint t = textures_.back().id();
+        glTextureStorage3D(t, 1, format, w, 1, layers);
+        glTextureSubImage3D(t, 0, 0, 0, 0, w, 1, layers, pixelFormat, type, data);
+        BufferSource s;
+        s.texture = t;
+        s.target = GL_TEXTURE_2D_ARRAY;
+        s.format = format;
+        s.width = w;
         s.height = 1;
         s.vis = vis;
         return s;
@@ -124,18 +139,9 @@ TEST_F(BufferViewTest, DepthIsLinearisedNormalsDecodedIdsColoured) {
     // Depth: a 2-layer DEPTH32F array, layer 1 shown; perspective depth of view distance z: near = white, far = black.
     const float n = 0.5f, f = 10.0f, z = 3.0f;
     const float ndc = (f + n - 2.0f * n * f / z) / (f - n), d = ndc * 0.5f + 0.5f;
-    textures_.push_back(gl::createTexture(GL_TEXTURE_2D_ARRAY, "depth"));
-    GLuint t = textures_.back().id();
-    glTextureStorage3D(t, 1, GL_DEPTH_COMPONENT32F, 1, 1, 2);
     const float depths[2] = {1.0f, d};
-    glTextureSubImage3D(t, 0, 0, 0, 0, 1, 1, 2, GL_DEPTH_COMPONENT, GL_FLOAT, depths);
-    BufferSource depth;
-    depth.texture = t;
-    depth.target = GL_TEXTURE_2D_ARRAY;
-    depth.format = GL_DEPTH_COMPONENT32F;
+    BufferSource depth = array(GL_DEPTH_COMPONENT32F, 1, 2, GL_DEPTH_COMPONENT, GL_FLOAT, depths, Visualize::Depth);
     depth.layer = 1;
-    depth.width = depth.height = 1;
-    depth.vis = Visualize::Depth;
     BufferViewParams p = oneToOne();
     p.znear = n;
     p.zfar = f;
@@ -147,19 +153,8 @@ TEST_F(BufferViewTest, DepthIsLinearisedNormalsDecodedIdsColoured) {
     EXPECT_NEAR(nc.y, unitByte(0.5f), 1);
     EXPECT_NEAR(nc.z, unitByte(0.9f), 1);
     // Object ids: black for 0, a colour from the id's hash otherwise.
-    textures_.push_back(gl::createTexture(GL_TEXTURE_2D_ARRAY, "ids"));
-    t = textures_.back().id();
-    glTextureStorage3D(t, 1, GL_R32UI, 2, 1, 1);
     const uint32_t ids[2] = {0u, 7u};
-    glTextureSubImage3D(t, 0, 0, 0, 0, 2, 1, 1, GL_RED_INTEGER, GL_UNSIGNED_INT, ids);
-    BufferSource idSrc;
-    idSrc.texture = t;
-    idSrc.target = GL_TEXTURE_2D_ARRAY;
-    idSrc.format = GL_R32UI;
-    idSrc.width = 2;
-    idSrc.height = 1;
-    idSrc.vis = Visualize::ObjectId;
-    const Output o = draw(idSrc, p, 2, 1);
+    const Output o = draw(array(GL_R32UI, 2, 1, GL_RED_INTEGER, GL_UNSIGNED_INT, ids, Visualize::ObjectId), p, 2, 1);
     expectColour(o.at(0, 0), glm::ivec3(0));
     const uint32_t hash = 7u * 2654435761u;
     auto comp = [](uint32_t v) { return unitByte(float(v & 255u) / 255.0f * 0.8f + 0.2f); };
