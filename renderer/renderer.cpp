@@ -310,6 +310,8 @@ void Renderer::setupLights(const Settings& s) {
         gpu.push_back(g);
     }
     lightCount_ = int(gpu.size());
+    lightTypes_.clear();
+    for (const GpuLight& g : gpu) lightTypes_.push_back(int(g.radiance.w));
     if (gpu.empty()) gpu.emplace_back();
     uint64_t key = fnv1a(kFnvOffset, gpu.data(), gpu.size() * sizeof(GpuLight));
     key = fnv1a(key, &size, sizeof(size));
@@ -594,6 +596,7 @@ FrameContext Renderer::makeContext(const Settings& s) {
                      lightCount_, casters_, shadowKey_, frameWidth(), frameHeight(), historyValid_,
                      s.varyTaps ? float(frameIndex_ % 1024) * 0.618034f : 0.0f, probes_.get(), probeUbo_.id()};
     ctx.environment = scene_->environment.get();
+    ctx.lightTypes = &lightTypes_;
     ctx.frameIndex = frameIndex_;
     return ctx;
 }

@@ -183,6 +183,7 @@ private:
     std::unique_ptr<ProbeVolume> probes_;  // the world-space fallback (null when off)
     Settings probeSettings_;               // what probes_ was laid out with
     int lightCount_ = 0;
+    std::vector<int> lightTypes_;  // per light, its LightType (GpuLight::radiance.w): FrameContext::lightTypes
     std::vector<ShadowCaster> casters_;
     uint64_t shadowKey_ = 0;
     int width_ = 0, height_ = 0;

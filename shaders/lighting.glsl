@@ -35,10 +35,10 @@ float rangeWindow(float dist, float range) {
     return w * w;
 }
 
-float shadowFactor(GpuLight L, vec3 P, vec3 n, vec3 toLight, float dist) {
+// type: L's type (0 directional, 1 point, 2 spot), a constant where DEEPGI_LIGHT_TYPES gives it.
+float shadowFactor(GpuLight L, int type, vec3 P, vec3 n, vec3 toLight, float dist) {
     int layer = int(L.params.y);
     if (layer < 0) return 1.0;
-    int type = int(L.radiance.w);
     // Normal offset grows with the texel footprint (constant for the sun, with distance for spot/point).
     float texel = type == 0 ? L.params.z : L.params.z * dist;
     float cosT = clamp(dot(n, toLight), 0.0, 1.0);
@@ -62,8 +62,7 @@ float shadowFactor(GpuLight L, vec3 P, vec3 n, vec3 toLight, float dist) {
 
 // The light's radiance reaching P (colour x intensity x distance/range/cone attenuation) and the unit direction
 // to it.
-vec3 lightArrival(GpuLight L, vec3 P, out vec3 toLight, out float dist) {
-    int type = int(L.radiance.w);
+vec3 lightArrival(GpuLight L, int type, vec3 P, out vec3 toLight, out float dist) {
     if (type == 0) {
         toLight = -L.direction.xyz;
         dist = 1e30;
@@ -83,25 +82,26 @@ vec3 lightArrival(GpuLight L, vec3 P, out vec3 toLight, out float dist) {
 }
 
 // Adds light L's shadowed irradiance on the surface at P with unit normal n to E.
-void addLightIrradiance(GpuLight L, vec3 P, vec3 n, inout vec3 E) {
+void addLightIrradiance(GpuLight L, int type, vec3 P, vec3 n, inout vec3 E) {
     vec3 toLight;
     float dist;
-    vec3 radiance = lightArrival(L, P, toLight, dist);
+    vec3 radiance = lightArrival(L, type, P, toLight, dist);
     float cosT = dot(n, toLight);
     if (cosT <= 0.0 || all(lessThanEqual(radiance, vec3(0.0)))) return;
-    E += radiance * cosT * shadowFactor(L, P, n, toLight, dist);
+    E += radiance * cosT * shadowFactor(L, type, P, n, toLight, dist);
 }
 
 // ---- With the GGX specular lobe (glTF metallic-roughness; brdf.glsl) ----
 // Adds light L's shadowed irradiance on the surface (P, unit n) to E and, where specular, its GGX radiance towards
 // v to Ls.
-void addLightWithSpecular(GpuLight L, vec3 P, vec3 n, vec3 v, vec4 spec, bool specular, inout vec3 E, inout vec3 Ls) {
+void addLightWithSpecular(GpuLight L, int type, vec3 P, vec3 n, vec3 v, vec4 spec, bool specular, inout vec3 E,
+                          inout vec3 Ls) {
     vec3 toLight;
     float dist;
-    vec3 radiance = lightArrival(L, P, toLight, dist);
+    vec3 radiance = lightArrival(L, type, P, toLight, dist);
     float cosT = dot(n, toLight);
     if (cosT <= 0.0 || all(lessThanEqual(radiance, vec3(0.0)))) return;
-    vec3 Ei = radiance * cosT * shadowFactor(L, P, n, toLight, dist);
+    vec3 Ei = radiance * cosT * shadowFactor(L, type, P, n, toLight, dist);
     E += Ei;
     if (specular) Ls += ggxSpecular(n, v, toLight, spec.rgb, spec.a) * Ei;
 }
@@ -110,6 +110,15 @@ void addLightWithSpecular(GpuLight L, vec3 P, vec3 n, vec3 v, vec4 spec, bool sp
 // so the compiler unrolls it and every light is read at a constant index. llvmpipe loads a block member at a
 // variable index once per lane: with the sun alone the uniform-count loop cost a fifth of the composite.
 const int MAX_UNROLLED_LIGHTS = 4;  // kUnrolledLights (test_shader_loops checks)
+#ifdef DEEPGI_LIGHT_COUNT
+// Each unrolled light's type as a constant (DEEPGI_LIGHT_TYPES, padded to MAX_UNROLLED_LIGHTS), or read per light.
+#ifdef DEEPGI_LIGHT_TYPES
+const int kLightTypes[MAX_UNROLLED_LIGHTS] = int[MAX_UNROLLED_LIGHTS](DEEPGI_LIGHT_TYPES);
+#define DEEPGI_UNROLLED_TYPE(i) kLightTypes[i]
+#else
+#define DEEPGI_UNROLLED_TYPE(i) int(uLightBlock[i].radiance.w)
+#endif
+#endif
 
 // Shadowed irradiance on the surface at P with unit normal n.
 vec3 directIrradiance(vec3 P, vec3 n) {
@@ -117,12 +126,13 @@ vec3 directIrradiance(vec3 P, vec3 n) {
 #ifdef DEEPGI_LIGHT_COUNT
     for (int i = 0; i < MAX_UNROLLED_LIGHTS; ++i) {
         if (i >= DEEPGI_LIGHT_COUNT) break;
-        addLightIrradiance(uLightBlock[i], P, n, E);
+        addLightIrradiance(uLightBlock[i], DEEPGI_UNROLLED_TYPE(i), P, n, E);
     }
 #else
     for (int i = 0; i < MAX_LIGHTS; ++i) {
         if (i >= uLightCount) break;
-        addLightIrradiance(lightAt(i), P, n, E);
+        GpuLight L = lightAt(i);
+        addLightIrradiance(L, int(L.radiance.w), P, n, E);
     }
 #endif
     return E;
@@ -137,12 +147,13 @@ vec3 directIrradianceAndSpecular(vec3 P, vec3 n, vec3 v, vec4 spec, out vec3 Ls)
 #ifdef DEEPGI_LIGHT_COUNT
     for (int i = 0; i < MAX_UNROLLED_LIGHTS; ++i) {
         if (i >= DEEPGI_LIGHT_COUNT) break;
-        addLightWithSpecular(uLightBlock[i], P, n, v, spec, specular, E, Ls);
+        addLightWithSpecular(uLightBlock[i], DEEPGI_UNROLLED_TYPE(i), P, n, v, spec, specular, E, Ls);
     }
 #else
     for (int i = 0; i < MAX_LIGHTS; ++i) {
         if (i >= uLightCount) break;
-        addLightWithSpecular(lightAt(i), P, n, v, spec, specular, E, Ls);
+        GpuLight L = lightAt(i);
+        addLightWithSpecular(L, int(L.radiance.w), P, n, v, spec, specular, E, Ls);
     }
 #endif
     return E;

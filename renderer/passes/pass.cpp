@@ -182,7 +182,17 @@ void addLightingDefines(const FrameContext& ctx, std::vector<std::string>& defin
     // input radiance pass 0.89 x with the sun alone).
     if (ctx.lightCount <= kBlockLights) defines.push_back("DEEPGI_BLOCK_LIGHTS_ONLY");
     // A few lights: a light loop of compile-time length, unrolled to constant indices (lighting.glsl says why).
-    if (ctx.lightCount <= kUnrolledLights) defines.push_back("DEEPGI_LIGHT_COUNT " + std::to_string(ctx.lightCount));
+    if (ctx.lightCount <= kUnrolledLights) {
+        defines.push_back("DEEPGI_LIGHT_COUNT " + std::to_string(ctx.lightCount));
+        // And their types, so that each light runs its own type's code only (llvmpipe runs both sides of a test of
+        // a uniform type: the sun's 2D shadow lookup and a cube one; composite 0.94 x in CPU time on the atrium).
+        if (ctx.lightTypes && int(ctx.lightTypes->size()) >= ctx.lightCount) {
+            std::string types;
+            for (int i = 0; i < kUnrolledLights; ++i)
+                types += (i ? ", " : "") + std::to_string(i < ctx.lightCount ? (*ctx.lightTypes)[size_t(i)] : 0);
+            defines.push_back("DEEPGI_LIGHT_TYPES " + types);
+        }
+    }
 }
 
 void LightingUniforms::set(const FrameContext& ctx) const {

@@ -192,6 +192,7 @@ struct FrameContext {
     ProbeVolume* probes; // the world-space fallback (null when config.probes is false)
     GLuint probeUniforms;  // its uniform block (probe_volume.glsl), bound at 2
     const EnvironmentMap* environment = nullptr;  // the scene's environment map (null = none)
+    const std::vector<int>* lightTypes = nullptr;  // per light of the light buffer, its LightType (null = unknown)
     uint64_t frameIndex = 0;  // frames rendered before this one (the interleaved gather's turn)
     // Set by the renderer for the pass that runs.
     const RenderPass* pass = nullptr;
@@ -230,7 +231,8 @@ struct LightingUniforms {
 };
 
 // The defines of a pass that includes lighting.glsl, from this frame's light count: DEEPGI_BLOCK_LIGHTS_ONLY where
-// every light is in the uniform block, and DEEPGI_LIGHT_COUNT n where there are at most kUnrolledLights of them.
+// every light is in the uniform block, and DEEPGI_LIGHT_COUNT n where there are at most kUnrolledLights of them,
+// with DEEPGI_LIGHT_TYPES, their types.
 void addLightingDefines(const FrameContext& ctx, std::vector<std::string>& defines);
 
 // The optional shadow-map reads of a pass that includes lighting.glsl.
