@@ -20,9 +20,10 @@ void ShadowMapPass::table(const PipelineConfig& c, PassTable& t) const {
 void ShadowMapPass::execute(FrameContext& ctx) {
     // Kept until the lights or the scene change or the maps are allocated anew (a new map size or light count);
     // a new frame size (the viewer's dynamic resolution) keeps them.
-    if (renderedKey_ == ctx.shadowKey && renderedTextures_ == ctx.writtenTexturesKey()) return;
+    const uint64_t textures = ctx.writtenTexturesKey();
+    if (renderedKey_ == ctx.shadowKey && renderedTextures_ == textures) return;
     renderedKey_ = ctx.shadowKey;
-    renderedTextures_ = ctx.writtenTexturesKey();
+    renderedTextures_ = textures;
     ++renders_;
     for (const char* texName : {"Shadow Maps", "Shadow Cubes"}) {
         if (!ctx.table->uses(texName)) continue;

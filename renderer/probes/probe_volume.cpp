@@ -100,7 +100,6 @@ double msSince(std::chrono::steady_clock::time_point start) {
     return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
 }
 
-
 // Eight floats as one GCC/Clang vector (two SSE or one AVX register): the loops below are written with it because
 // -O2 left them scalar. The operations are the scalar ones in the same order, so the sums are the same bits.
 // Float8At reads and writes eight floats of an array in place (unaligned, aliasing the floats).
